@@ -1,0 +1,66 @@
+//! `compact`: renumber live darts contiguously and drop unused vertex ids.
+
+use super::storage::CMap3;
+
+/// Old → new index tables produced by [`CMap3::compact`] (0 = removed).
+#[derive(Clone, Debug)]
+pub struct Compaction {
+    pub darts: Vec<u32>,
+    pub vertices: Vec<u32>,
+}
+
+impl CMap3 {
+    /// Renumbers live darts 1..=n in their current order, empties the free list, and
+    /// keeps only the vertex ids some dart uses (in increasing order). Side tables
+    /// indexed by dart or vertex id can be remapped with the returned tables.
+    pub fn compact(&mut self) -> Compaction {
+        let n = self.dart_capacity();
+        let mut dmap = vec![0u32; n];
+        let mut next = 1u32;
+        for d in self.darts() {
+            dmap[d.idx()] = next;
+            next += 1;
+        }
+        let mut vused = vec![false; self.positions.len()];
+        for d in self.darts() {
+            vused[self.vertex[d.idx()] as usize] = true;
+        }
+        let mut vmap = vec![u32::MAX; self.positions.len()];
+        let mut positions = Vec::with_capacity(vused.iter().filter(|u| **u).count());
+        for (v, used) in vused.iter().enumerate() {
+            if *used {
+                vmap[v] = positions.len() as u32;
+                positions.push(self.positions[v]);
+            }
+        }
+        let mut betas = Vec::with_capacity(next as usize);
+        let mut vertex = Vec::with_capacity(next as usize);
+        let mut marks = Vec::with_capacity(next as usize);
+        betas.push([0; 4]);
+        vertex.push(u32::MAX);
+        marks.push(self.marks[0]);
+        for i in 1..n {
+            if dmap[i] == 0 {
+                continue;
+            }
+            let b = self.betas[i];
+            betas.push([
+                dmap[b[0] as usize],
+                dmap[b[1] as usize],
+                dmap[b[2] as usize],
+                dmap[b[3] as usize],
+            ]);
+            vertex.push(vmap[self.vertex[i] as usize]);
+            marks.push(self.marks[i]);
+        }
+        self.betas = betas;
+        self.vertex = vertex;
+        self.marks = marks;
+        self.positions = positions;
+        self.free_darts = Vec::new();
+        Compaction {
+            darts: dmap,
+            vertices: vmap,
+        }
+    }
+}

@@ -1,0 +1,78 @@
+//! Per-dart marks with a reserve/free API (like CGAL's `get_new_mark`/`free_mark`).
+//! The papers' *flags* (2022 §4.2.2) are one reserved mark.
+
+use super::dart::Dart;
+use super::error::MapError;
+use super::storage::CMap3;
+
+/// Bit 31 of the mark word flags deleted darts; bits 0..31 are for users.
+pub(crate) const DELETED_BIT: u32 = 1 << 31;
+
+/// A reserved mark: one bit per dart, obtained with [`CMap3::reserve_mark`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Mark(u8);
+
+impl Mark {
+    #[inline]
+    fn bit(self) -> u32 {
+        1 << self.0
+    }
+}
+
+impl CMap3 {
+    /// Reserves a mark, initially clear on every dart.
+    ///
+    /// # Errors
+    /// [`MapError::NoMarkLeft`] when all 31 user marks are in use.
+    pub fn reserve_mark(&mut self) -> Result<Mark, MapError> {
+        let free = (!self.used_marks).trailing_zeros();
+        if free >= 31 {
+            return Err(MapError::NoMarkLeft);
+        }
+        self.used_marks |= 1 << free;
+        let m = Mark(free as u8);
+        self.clear_mark(m);
+        Ok(m)
+    }
+
+    /// Releases a mark (its bits are cleared on the next reservation).
+    pub fn free_mark(&mut self, m: Mark) {
+        self.used_marks &= !m.bit();
+    }
+
+    #[inline]
+    pub fn is_marked(&self, d: Dart, m: Mark) -> bool {
+        self.marks[d.idx()] & m.bit() != 0
+    }
+
+    #[inline]
+    pub fn mark(&mut self, d: Dart, m: Mark) {
+        self.marks[d.idx()] |= m.bit();
+    }
+
+    #[inline]
+    pub fn unmark(&mut self, d: Dart, m: Mark) {
+        self.marks[d.idx()] &= !m.bit();
+    }
+
+    /// Clears mark `m` on every dart.
+    pub fn clear_mark(&mut self, m: Mark) {
+        let keep = !m.bit();
+        self.marks
+            .iter_mut()
+            .skip(1)
+            .for_each(|w| *w &= keep | DELETED_BIT);
+    }
+
+    /// All user mark bits of d (bit k = mark k).
+    #[inline]
+    pub fn mark_bits(&self, d: Dart) -> u32 {
+        self.marks[d.idx()] & !DELETED_BIT
+    }
+
+    /// Replaces all user mark bits of d.
+    #[inline]
+    pub fn set_mark_bits(&mut self, d: Dart, bits: u32) {
+        self.marks[d.idx()] = bits & !DELETED_BIT;
+    }
+}

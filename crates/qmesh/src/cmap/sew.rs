@@ -1,0 +1,233 @@
+//! `sew`/`unsew` with whole-orbit consistency (as CGAL's `sew<i>`), 2022 §2.2.
+//!
+//! Sewing keeps β1∘β3 an involution: 1-sewing also links the β3 images, 3-sewing
+//! pairs two whole faces in opposite directions. Vertex ids follow: orbits that merge
+//! take one id, orbits that an unsew splits get a fresh id (a copy of the position).
+
+use super::dart::Dart;
+use super::error::MapError;
+use super::orbit::Orbit;
+use super::storage::CMap3;
+
+impl CMap3 {
+    /// Gives every dart of the vertex orbit of `d` the vertex id of `d`.
+    pub(crate) fn harmonize_vertex(&mut self, d: Dart) {
+        let v = self.vertex_of(d);
+        self.with_scratch(|m, w| {
+            for &x in w.collect(m, d, Orbit::Vertex) {
+                m.vertex[x.idx()] = v;
+            }
+        });
+    }
+
+    /// After an unsew or a removal: vertex orbits through `touched` that now share an id
+    /// with another orbit get a fresh id at the same position.
+    pub(crate) fn split_vertex_ids(&mut self, touched: &[Dart]) {
+        let mut claimed: rustc_hash::FxHashMap<u32, Dart> = Default::default();
+        self.with_scratch(|m, w| {
+            for &t in touched {
+                if !m.is_live(t) {
+                    continue;
+                }
+                let id = m.vertex_of(t);
+                match claimed.get(&id) {
+                    None => {
+                        claimed.insert(id, t);
+                    }
+                    Some(&rep) => {
+                        if w.collect(m, rep, Orbit::Vertex).contains(&t) {
+                            continue;
+                        }
+                        let fresh = m.add_vertex(m.position(id));
+                        for &x in w.collect(m, t, Orbit::Vertex) {
+                            m.vertex[x.idx()] = fresh;
+                        }
+                        claimed.insert(fresh, t);
+                    }
+                }
+            }
+        });
+    }
+
+    fn not_sewable(i: usize, d1: Dart, d2: Dart, why: &'static str) -> MapError {
+        MapError::NotSewable { i, d1, d2, why }
+    }
+
+    /// 1-sews `d1` to `d2` (β1(d1) = d2); when both are 3-sewn, also β1(β3(d2)) = β3(d1).
+    ///
+    /// # Errors
+    /// If β1(d1) or β0(d2) is already sewn, or only one of the two is 3-sewn.
+    pub fn sew1(&mut self, d1: Dart, d2: Dart) -> Result<(), MapError> {
+        self.err_if_dead(d1)?;
+        self.err_if_dead(d2)?;
+        if !self.is_free(d1, 1) || !self.is_free(d2, 0) {
+            return Err(Self::not_sewable(1, d1, d2, "β1(d1) or β0(d2) is not free"));
+        }
+        let (e1, e2) = (self.beta(d1, 3), self.beta(d2, 3));
+        match (e1, e2) {
+            (None, None) => {}
+            (Some(e1), Some(e2)) if self.is_free(e2, 1) && self.is_free(e1, 0) => {}
+            _ => {
+                return Err(Self::not_sewable(
+                    1,
+                    d1,
+                    d2,
+                    "their β3 images cannot be 1-sewn in turn",
+                ));
+            }
+        }
+        self.link(d1, 1, d2);
+        if let (Some(e1), Some(e2)) = (e1, e2) {
+            self.link(e2, 1, e1);
+            self.harmonize_vertex(e1);
+        }
+        self.harmonize_vertex(d2);
+        Ok(())
+    }
+
+    /// 2-sews `d1` and `d2` (two darts of the same edge in opposite directions).
+    ///
+    /// # Errors
+    /// If either is already 2-sewn or `d1 == d2`.
+    pub fn sew2(&mut self, d1: Dart, d2: Dart) -> Result<(), MapError> {
+        self.err_if_dead(d1)?;
+        self.err_if_dead(d2)?;
+        if d1 == d2 || !self.is_free(d1, 2) || !self.is_free(d2, 2) {
+            return Err(Self::not_sewable(
+                2,
+                d1,
+                d2,
+                "both darts must be distinct and 2-free",
+            ));
+        }
+        self.link(d1, 2, d2);
+        self.harmonize_vertex(d1);
+        self.harmonize_vertex(d2);
+        Ok(())
+    }
+
+    /// 3-sews the face of `d1` with the face of `d2`: d1 ↔ d2, β1(d1) ↔ β0(d2), …
+    ///
+    /// ```
+    /// use qmesh::cmap::CMap3;
+    /// let mut m = CMap3::new();
+    /// let p = |m: &mut CMap3, x: f64, y: f64, z: f64| m.add_vertex([x, y, z]);
+    /// let (a, b, c, t, u) = (p(&mut m, 0., 0., 0.), p(&mut m, 1., 0., 0.), p(&mut m, 0., 1., 0.), p(&mut m, 0., 0., 1.), p(&mut m, 0., 0., -1.));
+    /// let d1 = m.make_tetrahedron([a, b, c, t]); // face a-b-c, seen from t
+    /// let d2 = m.make_tetrahedron([a, c, b, u]); // face a-c-b, seen from u
+    /// // d1 runs a→b, so its partner runs b→a: the dart before a in the second tet's face.
+    /// let d2 = m.prev(d2);
+    /// assert!(m.is_sewable3(d1, d2));
+    /// m.sew3(d1, d2).unwrap();
+    /// assert!(m.is_valid().is_empty());
+    /// ```
+    ///
+    /// # Errors
+    /// If the faces have different lengths, are the same face, or any dart is 3-sewn.
+    pub fn sew3(&mut self, d1: Dart, d2: Dart) -> Result<(), MapError> {
+        self.err_if_dead(d1)?;
+        self.err_if_dead(d2)?;
+        if !self.is_sewable3(d1, d2) {
+            return Err(Self::not_sewable(
+                3,
+                d1,
+                d2,
+                "faces must be distinct, 3-free and of equal length",
+            ));
+        }
+        let (mut x, mut y) = (d1, d2);
+        loop {
+            self.link(x, 3, y);
+            x = self.next(x);
+            y = self.prev(y);
+            if x == d1 {
+                break;
+            }
+        }
+        loop {
+            self.harmonize_vertex(x);
+            x = self.next(x);
+            if x == d1 {
+                break;
+            }
+        }
+        Ok(())
+    }
+
+    /// Whether [`sew3`](Self::sew3) would accept `d1`, `d2`.
+    pub fn is_sewable3(&self, d1: Dart, d2: Dart) -> bool {
+        let (mut x, mut y) = (d1, d2);
+        loop {
+            if !self.is_free(x, 3) || !self.is_free(y, 3) || y == d1 {
+                return false;
+            }
+            x = self.next(x);
+            y = self.prev(y);
+            if (x == d1) != (y == d2) {
+                return false;
+            }
+            if x == d1 {
+                return true;
+            }
+        }
+    }
+
+    /// 1-unsews `d` from β1(d) (and β3 images accordingly).
+    ///
+    /// # Errors
+    /// If d is 1-free.
+    pub fn unsew1(&mut self, d: Dart) -> Result<(), MapError> {
+        self.err_if_dead(d)?;
+        let n = self.beta(d, 1).ok_or(MapError::AlreadyFree(d, 1))?;
+        let mut touched = vec![d, n];
+        if let (Some(e1), Some(e2)) = (self.beta(d, 3), self.beta(n, 3)) {
+            self.unlink(e2, 1);
+            touched.extend([e1, e2]);
+        }
+        self.unlink(d, 1);
+        touched.extend(touched.clone().into_iter().filter_map(|t| self.beta(t, 2)));
+        self.split_vertex_ids(&touched);
+        Ok(())
+    }
+
+    /// 2-unsews `d` and β2(d).
+    ///
+    /// # Errors
+    /// If d is 2-free.
+    pub fn unsew2(&mut self, d: Dart) -> Result<(), MapError> {
+        self.err_if_dead(d)?;
+        let o = self.beta(d, 2).ok_or(MapError::AlreadyFree(d, 2))?;
+        self.unlink(d, 2);
+        let touched: Vec<Dart> = [Some(d), Some(o), self.beta(d, 1), self.beta(o, 1)]
+            .into_iter()
+            .flatten()
+            .collect();
+        self.split_vertex_ids(&touched);
+        Ok(())
+    }
+
+    /// 3-unsews the whole face of `d` from its neighbour volume.
+    ///
+    /// # Errors
+    /// If d is 3-free.
+    pub fn unsew3(&mut self, d: Dart) -> Result<(), MapError> {
+        self.err_if_dead(d)?;
+        if self.is_free(d, 3) {
+            return Err(MapError::AlreadyFree(d, 3));
+        }
+        let mut touched = Vec::new();
+        let mut x = d;
+        loop {
+            if let Some(y) = self.beta(x, 3) {
+                touched.extend([x, y]);
+                self.unlink(x, 3);
+            }
+            x = self.next(x);
+            if x == d {
+                break;
+            }
+        }
+        self.split_vertex_ids(&touched);
+        Ok(())
+    }
+}

@@ -1,0 +1,275 @@
+//! The dart store behind every algorithm: betas, origin vertices, marks, positions.
+//!
+//! All other modules read and write darts through the handful of functions here
+//! (`beta`, `link`, `unlink`, `create_dart`, `delete_dart`, `vertex_of`, marks), so the
+//! layout can change without touching the algorithms above it (GUIDE §2).
+
+use super::dart::Dart;
+use super::error::MapError;
+use super::marks::DELETED_BIT;
+use super::orbit::LocalScratch;
+
+/// A 3D combinatorial map (2022 §2.2, 2025 §3.2) with one position per vertex.
+///
+/// Storage is struct-of-arrays: per dart `[β0, β1, β2, β3]` (16 B), the origin vertex
+/// id (4 B) and 32 mark bits (4 B) — 24 bytes per dart; positions live in their own
+/// table indexed by vertex id. Raw index 0 is the null dart ε.
+///
+/// **Orientation convention.** In a volume (dimension 3), β1 turns *clockwise* around a
+/// face seen from outside its volume, i.e. the right-hand normal of a β1 cycle points
+/// into the volume (as in the papers, 2022 §2.2). Cell constructors take nodes in VTK
+/// order and produce this orientation. In a surface map (dimension 2), β1 follows the
+/// face cycles as given by the file.
+#[derive(Clone, Debug)]
+pub struct CMap3 {
+    pub(super) betas: Vec<[u32; 4]>,
+    pub(super) vertex: Vec<u32>,
+    pub(super) marks: Vec<u32>,
+    pub(super) positions: Vec<[f64; 3]>,
+    pub(super) free_darts: Vec<u32>,
+    pub(super) used_marks: u32,
+    pub(super) live: usize,
+    pub(super) dimension: u8,
+    pub(super) scratch: LocalScratch,
+}
+
+impl Default for CMap3 {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl CMap3 {
+    /// An empty volume map (dimension 3).
+    pub fn new() -> Self {
+        Self::with_capacity(0, 0)
+    }
+
+    /// An empty volume map with room for `darts` darts and `vertices` vertices.
+    pub fn with_capacity(darts: usize, vertices: usize) -> Self {
+        let mut betas = Vec::with_capacity(darts + 1);
+        betas.push([0; 4]);
+        let mut vertex = Vec::with_capacity(darts + 1);
+        vertex.push(u32::MAX);
+        let mut marks = Vec::with_capacity(darts + 1);
+        marks.push(DELETED_BIT);
+        CMap3 {
+            betas,
+            vertex,
+            marks,
+            positions: Vec::with_capacity(vertices),
+            free_darts: Vec::new(),
+            used_marks: DELETED_BIT,
+            live: 0,
+            dimension: 3,
+            scratch: LocalScratch::default(),
+        }
+    }
+
+    /// 3 for a volume map (β3 may be free, β1 and β2 never), 2 for a surface map
+    /// (β3 unused, β2 free on the boundary).
+    pub fn dimension(&self) -> u8 {
+        self.dimension
+    }
+
+    /// Declares the map a surface (2) or volume (3) map; `is_valid` checks accordingly.
+    pub fn set_dimension(&mut self, dim: u8) {
+        assert!(dim == 2 || dim == 3, "dimension must be 2 or 3");
+        self.dimension = dim;
+    }
+
+    /// Number of live darts.
+    pub fn nb_darts(&self) -> usize {
+        self.live
+    }
+
+    /// One past the largest raw dart index (the size of per-dart side tables).
+    pub fn dart_capacity(&self) -> usize {
+        self.betas.len()
+    }
+
+    /// Number of vertex ids (positions), including ids no dart uses any more.
+    pub fn nb_vertex_ids(&self) -> usize {
+        self.positions.len()
+    }
+
+    /// Whether raw index `d` is a live dart of this map.
+    #[inline]
+    pub fn is_live(&self, d: Dart) -> bool {
+        self.marks
+            .get(d.idx())
+            .is_some_and(|m| m & DELETED_BIT == 0)
+    }
+
+    /// All live darts in increasing index order.
+    pub fn darts(&self) -> impl Iterator<Item = Dart> + '_ {
+        self.marks
+            .iter()
+            .enumerate()
+            .skip(1)
+            .filter(|(_, m)| *m & DELETED_BIT == 0)
+            .filter_map(|(i, _)| Dart::from_raw(i as u32))
+    }
+
+    /// βi(d) for i in 0..=3; `None` when d is i-free.
+    #[inline]
+    pub fn beta(&self, d: Dart, i: usize) -> Option<Dart> {
+        Dart::from_raw(self.betas[d.idx()][i])
+    }
+
+    /// Raw βi(d) (0 = ε), for hot loops.
+    #[inline]
+    pub fn beta_raw(&self, d: u32, i: usize) -> u32 {
+        self.betas[d as usize][i]
+    }
+
+    /// Whether d is i-free.
+    #[inline]
+    pub fn is_free(&self, d: Dart, i: usize) -> bool {
+        self.betas[d.idx()][i] == 0
+    }
+
+    /// β1(d): the next dart around d's face.
+    ///
+    /// # Panics
+    /// If d is 1-free, which only happens in the middle of a bulk rewiring with
+    /// [`unlink`](Self::unlink).
+    #[inline]
+    pub fn next(&self, d: Dart) -> Dart {
+        self.beta(d, 1)
+            .expect("β1 is free: the map is being rewired")
+    }
+
+    /// β0(d): the previous dart around d's face. # Panics as [`next`](Self::next).
+    #[inline]
+    pub fn prev(&self, d: Dart) -> Dart {
+        self.beta(d, 0)
+            .expect("β0 is free: the map is being rewired")
+    }
+
+    /// Low-level link, no checks: for i = 1, β1(d1) = d2 and β0(d2) = d1; for i = 0 the
+    /// converse; for i = 2, 3 both directions. Vertex ids and orbits are not updated;
+    /// algorithms that rewire in bulk use this and restore validity themselves.
+    #[inline]
+    pub fn link(&mut self, d1: Dart, i: usize, d2: Dart) {
+        match i {
+            0 => {
+                self.betas[d1.idx()][0] = d2.raw();
+                self.betas[d2.idx()][1] = d1.raw();
+            }
+            1 => {
+                self.betas[d1.idx()][1] = d2.raw();
+                self.betas[d2.idx()][0] = d1.raw();
+            }
+            2 | 3 => {
+                self.betas[d1.idx()][i] = d2.raw();
+                self.betas[d2.idx()][i] = d1.raw();
+            }
+            _ => panic!("beta index {i} out of 0..=3"),
+        }
+    }
+
+    /// Low-level unlink, no checks: frees βi(d) and the reverse pointer of its partner.
+    #[inline]
+    pub fn unlink(&mut self, d: Dart, i: usize) {
+        let Some(o) = self.beta(d, i) else { return };
+        self.betas[d.idx()][i] = 0;
+        let back = match i {
+            0 => 1,
+            1 => 0,
+            _ => i,
+        };
+        if self.betas[o.idx()][back] == d.raw() {
+            self.betas[o.idx()][back] = 0;
+        }
+    }
+
+    /// Adds a vertex at `p` and returns its id.
+    pub fn add_vertex(&mut self, p: [f64; 3]) -> u32 {
+        self.positions.push(p);
+        (self.positions.len() - 1) as u32
+    }
+
+    /// Id of the vertex at the origin of d.
+    #[inline]
+    pub fn vertex_of(&self, d: Dart) -> u32 {
+        self.vertex[d.idx()]
+    }
+
+    /// Sets the origin vertex id of one dart (low level: keep vertex orbits uniform).
+    #[inline]
+    pub fn set_vertex_of(&mut self, d: Dart, v: u32) {
+        self.vertex[d.idx()] = v;
+    }
+
+    /// Position of vertex id `v`.
+    #[inline]
+    pub fn position(&self, v: u32) -> [f64; 3] {
+        self.positions[v as usize]
+    }
+
+    /// Moves vertex id `v`.
+    pub fn set_position(&mut self, v: u32, p: [f64; 3]) {
+        self.positions[v as usize] = p;
+    }
+
+    /// Position of the origin of d.
+    #[inline]
+    pub fn point(&self, d: Dart) -> [f64; 3] {
+        self.positions[self.vertex[d.idx()] as usize]
+    }
+
+    /// All positions, indexed by vertex id.
+    pub fn positions(&self) -> &[[f64; 3]] {
+        &self.positions
+    }
+
+    /// A new free dart (all betas ε, no marks) whose origin is vertex `v`; reuses
+    /// deleted slots first.
+    pub fn create_dart(&mut self, v: u32) -> Dart {
+        self.live += 1;
+        if let Some(i) = self.free_darts.pop() {
+            let k = i as usize;
+            self.betas[k] = [0; 4];
+            self.vertex[k] = v;
+            self.marks[k] = 0;
+            return Dart::from_raw(i).expect("free list holds no ε");
+        }
+        let i = self.betas.len();
+        assert!(i < u32::MAX as usize, "too many darts for u32 indices");
+        self.betas.push([0; 4]);
+        self.vertex.push(v);
+        self.marks.push(0);
+        Dart::from_raw(i as u32).expect("index 0 is never pushed")
+    }
+
+    /// Deletes d (low level): its slot goes to the free list. Darts still pointing at
+    /// it are the caller's responsibility (`is_valid` reports them).
+    pub fn delete_dart(&mut self, d: Dart) {
+        debug_assert!(self.is_live(d), "deleting {d:?} twice");
+        self.betas[d.idx()] = [0; 4];
+        self.marks[d.idx()] = DELETED_BIT;
+        self.free_darts.push(d.raw());
+        self.live -= 1;
+    }
+
+    /// Heap bytes held by the map (darts, positions, free list).
+    pub fn heap_bytes(&self) -> usize {
+        self.betas.capacity() * 16
+            + self.vertex.capacity() * 4
+            + self.marks.capacity() * 4
+            + self.positions.capacity() * 24
+            + self.free_darts.capacity() * 4
+    }
+
+    /// Bytes per dart of the per-dart arrays (betas + vertex + marks).
+    pub const BYTES_PER_DART: usize = 16 + 4 + 4;
+
+    pub(super) fn err_if_dead(&self, d: Dart) -> Result<(), MapError> {
+        if self.is_live(d) {
+            Ok(())
+        } else {
+            Err(MapError::DeadDart(d))
+        }
+    }
+}

@@ -1,0 +1,165 @@
+//! `is_valid`: every property of Definition 1 (2022 §2.2) plus our storage invariants.
+
+use std::fmt;
+
+use rustc_hash::FxHashMap;
+
+use super::dart::Dart;
+use super::orbit::Orbit;
+use super::storage::CMap3;
+
+/// One violated property, naming the dart where it was seen.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Violation {
+    /// βi(d) points to a deleted dart or outside the map.
+    Dangling { dart: u32, i: usize, target: u32 },
+    /// β1 (or β0) free: faces must be closed cycles.
+    Beta1Free { dart: u32 },
+    /// β2 free in a volume map: volumes must be closed.
+    Beta2Free { dart: u32 },
+    /// β0(β1(d)) ≠ d: β0 is not the inverse of β1.
+    Beta0NotInverse { dart: u32 },
+    /// βi(βi(d)) ≠ d for i = 2, 3.
+    NotInvolution { dart: u32, i: usize },
+    /// βi(d) = d.
+    FixedPoint { dart: u32, i: usize },
+    /// β1∘β3 is not an involution at d (β3(β1(d)) ≠ β0(β3(d))).
+    Beta13NotInvolution { dart: u32 },
+    /// Two darts of the same vertex orbit carry different vertex ids.
+    VertexIdMismatch { dart: u32, other: u32 },
+    /// A vertex id outside the position table.
+    VertexIdOutOfRange { dart: u32, id: u32 },
+    /// Two distinct vertex orbits share one vertex id.
+    VertexIdShared { id: u32, dart: u32, other: u32 },
+    /// A surface map (dimension 2) with a 3-sewn dart.
+    Beta3InSurface { dart: u32 },
+}
+
+impl fmt::Display for Violation {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        use Violation::*;
+        match *self {
+            Dangling { dart, i, target } => write!(
+                f,
+                "dart {dart}: β{i} points to {target}, which is not a live dart"
+            ),
+            Beta1Free { dart } => write!(f, "dart {dart}: β1 or β0 is free (open face)"),
+            Beta2Free { dart } => {
+                write!(f, "dart {dart}: β2 is free in a volume map (open volume)")
+            }
+            Beta0NotInverse { dart } => write!(f, "dart {dart}: β0(β1(d)) ≠ d"),
+            NotInvolution { dart, i } => write!(f, "dart {dart}: β{i} is not an involution"),
+            FixedPoint { dart, i } => write!(f, "dart {dart}: β{i}(d) = d"),
+            Beta13NotInvolution { dart } => write!(f, "dart {dart}: β1∘β3 is not an involution"),
+            VertexIdMismatch { dart, other } => {
+                write!(
+                    f,
+                    "darts {dart} and {other} share a vertex but have different vertex ids"
+                )
+            }
+            VertexIdOutOfRange { dart, id } => {
+                write!(f, "dart {dart}: vertex id {id} has no position")
+            }
+            VertexIdShared { id, dart, other } => {
+                write!(
+                    f,
+                    "vertex id {id} is used by two distinct vertices (darts {dart} and {other})"
+                )
+            }
+            Beta3InSurface { dart } => write!(f, "dart {dart}: β3 is sewn in a surface map"),
+        }
+    }
+}
+
+impl CMap3 {
+    /// Every violated property (empty when the map is valid): β1 a permutation with β0
+    /// its inverse; β2, β3 and β1∘β3 involutions without fixed points; β1 never free,
+    /// β2 never free in volume maps; one vertex id per vertex orbit and one orbit per
+    /// id; no live dart pointing at a deleted one.
+    pub fn is_valid(&self) -> Vec<Violation> {
+        let mut out = Vec::new();
+        let n = self.dart_capacity() as u32;
+        let live = |x: u32| x != 0 && x < n && Dart::from_raw(x).is_some_and(|d| self.is_live(d));
+        for d in self.darts() {
+            let r = d.raw();
+            let b = self.betas[d.idx()];
+            let mut dangling = false;
+            for (i, &t) in b.iter().enumerate() {
+                if t != 0 && !live(t) {
+                    out.push(Violation::Dangling {
+                        dart: r,
+                        i,
+                        target: t,
+                    });
+                    dangling = true;
+                }
+            }
+            if dangling {
+                continue;
+            }
+            if b[1] == 0 || b[0] == 0 {
+                out.push(Violation::Beta1Free { dart: r });
+            } else {
+                if self.beta_raw(b[1], 0) != r || self.beta_raw(b[0], 1) != r {
+                    out.push(Violation::Beta0NotInverse { dart: r });
+                }
+                if b[1] == r {
+                    out.push(Violation::FixedPoint { dart: r, i: 1 });
+                }
+            }
+            if b[2] == 0 && self.dimension == 3 {
+                out.push(Violation::Beta2Free { dart: r });
+            }
+            if b[3] != 0 && self.dimension == 2 {
+                out.push(Violation::Beta3InSurface { dart: r });
+            }
+            for i in [2, 3] {
+                if b[i] == r {
+                    out.push(Violation::FixedPoint { dart: r, i });
+                } else if b[i] != 0 && self.beta_raw(b[i], i) != r {
+                    out.push(Violation::NotInvolution { dart: r, i });
+                }
+            }
+            if b[3] != 0 && b[1] != 0 {
+                let lhs = self.beta_raw(b[1], 3);
+                let rhs = self.beta_raw(b[3], 0);
+                if lhs != rhs {
+                    out.push(Violation::Beta13NotInvolution { dart: r });
+                }
+            }
+            let v = self.vertex[d.idx()];
+            if v as usize >= self.positions.len() {
+                out.push(Violation::VertexIdOutOfRange { dart: r, id: v });
+                continue;
+            }
+            // Local vertex-orbit checks: β2(d) and β3(d) start where β1(d) starts.
+            if b[1] != 0 && live(b[1]) {
+                let target = self.vertex[b[1] as usize];
+                for i in [2, 3] {
+                    if b[i] != 0 && self.vertex[b[i] as usize] != target {
+                        out.push(Violation::VertexIdMismatch {
+                            dart: b[i],
+                            other: b[1],
+                        });
+                    }
+                }
+            }
+        }
+        if out.is_empty() {
+            let mut owner: FxHashMap<u32, u32> = FxHashMap::default();
+            for d in self.cells(Orbit::Vertex) {
+                let id = self.vertex_of(d);
+                if let Some(&other) = owner.get(&id) {
+                    out.push(Violation::VertexIdShared {
+                        id,
+                        dart: d.raw(),
+                        other,
+                    });
+                } else {
+                    owner.insert(id, d.raw());
+                }
+            }
+        }
+        out
+    }
+}

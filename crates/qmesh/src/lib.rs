@@ -1,0 +1,8 @@
+//! qmesh: topological rewriting of 3D meshes on combinatorial maps.
+//!
+//! Layers (each only uses those listed before it): [`cmap`] (topology), [`geom`]
+//! (positions, volumes), [`build`] (indexed cells ↔ map), [`io`] (file formats).
+#![deny(unsafe_code)]
+#![warn(missing_debug_implementations)]
+
+pub mod cmap;
