@@ -1,3 +1,48 @@
-fn main() {
-    println!("Hello, world!");
+//! The `qmesh` command line: one module per subcommand, no algorithms here.
+
+mod cmd;
+mod memory;
+
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand};
+
+/// qmesh — edit 3D meshes by topological rewriting on combinatorial maps.
+#[derive(Parser, Debug)]
+#[command(name = "qmesh", version, about, long_about = None)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// Counts, topology, cell types, validity and timings of a mesh file.
+    Info(cmd::info::Args),
+    /// Checks the combinatorial map of a mesh; exit status 1 when invalid.
+    Validate(cmd::validate::Args),
+    /// Converts between mesh formats (by extension, or --format / --to).
+    Convert(cmd::convert::Args),
+    /// Writes built-in meshes (structured hex or tet grids).
+    Generate(cmd::generate::Args),
+    /// A short tour on built-in inputs: generate, inspect, split edges, write files.
+    Demo(cmd::demo::Args),
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Info(a) => cmd::info::run(a),
+        Command::Validate(a) => cmd::validate::run(a),
+        Command::Convert(a) => cmd::convert::run(a),
+        Command::Generate(a) => cmd::generate::run(a),
+        Command::Demo(a) => cmd::demo::run(a),
+    };
+    match result {
+        Ok(code) => code,
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            ExitCode::from(2)
+        }
+    }
 }

@@ -5,4 +5,8 @@
 #![deny(unsafe_code)]
 #![warn(missing_debug_implementations)]
 
+pub mod build;
 pub mod cmap;
+pub mod generate;
+pub mod geom;
+pub mod io;

@@ -58,6 +58,15 @@ impl CMap3 {
         self.marks = marks;
         self.positions = positions;
         self.free_darts = Vec::new();
+        if let Some(old) = self.labels.take() {
+            let mut l = vec![0; self.betas.len()];
+            for (i, &new) in dmap.iter().enumerate() {
+                if new != 0 {
+                    l[new as usize] = old[i];
+                }
+            }
+            self.labels = Some(l);
+        }
         Compaction {
             darts: dmap,
             vertices: vmap,

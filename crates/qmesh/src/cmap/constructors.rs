@@ -86,6 +86,21 @@ impl CMap3 {
     /// polyhedron) or an edge used twice in the same direction (non-manifold or
     /// inconsistently oriented faces). The map is unchanged on error.
     pub fn make_polyhedron<F: AsRef<[u32]>>(&mut self, faces: &[F]) -> Result<Dart, MapError> {
+        Ok(self.make_polyhedron_faces(faces)?[0])
+    }
+
+    /// As [`make_polyhedron`](Self::make_polyhedron), returning the first dart of each
+    /// face (the dart starting at the face's first vertex), in the order given.
+    ///
+    /// # Errors
+    /// As [`make_polyhedron`](Self::make_polyhedron).
+    pub fn make_polyhedron_faces<F: AsRef<[u32]>>(
+        &mut self,
+        faces: &[F],
+    ) -> Result<Vec<Dart>, MapError> {
+        if faces.is_empty() {
+            return Err(MapError::FaceTooSmall { min: 3, got: 0 });
+        }
         let mut edges: Vec<(u32, u32, usize)> = Vec::new();
         for f in faces {
             let f = f.as_ref();
@@ -122,8 +137,10 @@ impl CMap3 {
             k += 2;
         }
         let mut darts = Vec::with_capacity(edges.len());
+        let mut firsts = Vec::with_capacity(faces.len());
         for f in faces {
             let d0 = self.make_polygon(f.as_ref());
+            firsts.push(d0);
             let mut d = d0;
             loop {
                 darts.push(d);
@@ -136,7 +153,7 @@ impl CMap3 {
         for (i, j) in pairs {
             self.link(darts[i], 2, darts[j]);
         }
-        Ok(darts[0])
+        Ok(firsts)
     }
 
     fn make_standard(&mut self, table: &[&[usize]], nodes: &[u32]) -> Dart {

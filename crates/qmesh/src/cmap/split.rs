@@ -38,6 +38,7 @@ impl CMap3 {
             .collect();
         for (k, &x) in edge.iter().enumerate() {
             let n = new[k];
+            self.set_label_of(n, self.label_of(x));
             let after = self.next(x);
             self.link(n, 1, after);
             self.link(x, 1, n);

@@ -31,6 +31,9 @@ pub struct CMap3 {
     pub(super) live: usize,
     pub(super) dimension: u8,
     pub(super) scratch: LocalScratch,
+    /// Optional per-dart volume label (Medit reference, gmsh entity): only allocated
+    /// when a mesh carries labels.
+    pub(super) labels: Option<Vec<i32>>,
 }
 
 impl Default for CMap3 {
@@ -63,6 +66,7 @@ impl CMap3 {
             live: 0,
             dimension: 3,
             scratch: LocalScratch::default(),
+            labels: None,
         }
     }
 
@@ -233,6 +237,9 @@ impl CMap3 {
             self.betas[k] = [0; 4];
             self.vertex[k] = v;
             self.marks[k] = 0;
+            if let Some(l) = &mut self.labels {
+                l[k] = 0;
+            }
             return Dart::from_raw(i).expect("free list holds no ε");
         }
         let i = self.betas.len();
@@ -240,6 +247,9 @@ impl CMap3 {
         self.betas.push([0; 4]);
         self.vertex.push(v);
         self.marks.push(0);
+        if let Some(l) = &mut self.labels {
+            l.push(0);
+        }
         Dart::from_raw(i as u32).expect("index 0 is never pushed")
     }
 
@@ -253,6 +263,32 @@ impl CMap3 {
         self.live -= 1;
     }
 
+    /// Starts keeping a volume label per dart (all 0 initially).
+    pub fn enable_labels(&mut self) {
+        if self.labels.is_none() {
+            self.labels = Some(vec![0; self.betas.len()]);
+        }
+    }
+
+    /// Whether volume labels are kept.
+    pub fn has_labels(&self) -> bool {
+        self.labels.is_some()
+    }
+
+    /// Volume label of d's volume (0 when labels are not kept).
+    #[inline]
+    pub fn label_of(&self, d: Dart) -> i32 {
+        self.labels.as_ref().map_or(0, |l| l[d.idx()])
+    }
+
+    /// Sets the label of one dart (callers label whole volumes).
+    #[inline]
+    pub fn set_label_of(&mut self, d: Dart, label: i32) {
+        if let Some(l) = &mut self.labels {
+            l[d.idx()] = label;
+        }
+    }
+
     /// Heap bytes held by the map (darts, positions, free list).
     pub fn heap_bytes(&self) -> usize {
         self.betas.capacity() * 16
@@ -260,6 +296,7 @@ impl CMap3 {
             + self.marks.capacity() * 4
             + self.positions.capacity() * 24
             + self.free_darts.capacity() * 4
+            + self.labels.as_ref().map_or(0, |l| l.capacity() * 4)
     }
 
     /// Bytes per dart of the per-dart arrays (betas + vertex + marks).

@@ -1,0 +1,36 @@
+//! Subcommands.
+
+pub mod convert;
+pub mod demo;
+pub mod generate;
+pub mod info;
+pub mod validate;
+
+use std::path::PathBuf;
+
+use anyhow::{Result, anyhow};
+use qmesh::io::Format;
+
+/// Options shared by commands that read a mesh.
+#[derive(clap::Args, Debug, Clone)]
+pub struct InputArgs {
+    /// Input mesh (vtk, vtu, mesh, msh, off, obj, stl, ply, moka).
+    pub input: PathBuf,
+    /// Input format, overriding the file extension.
+    #[arg(long)]
+    pub format: Option<String>,
+    /// Flip cells with negative signed volume instead of only counting them.
+    #[arg(long)]
+    pub fix_orientation: bool,
+}
+
+/// Parses a `--format` value.
+pub fn parse_format(s: &Option<String>) -> Result<Option<Format>> {
+    s.as_deref()
+        .map(|f| {
+            Format::from_name(f).ok_or_else(|| {
+                anyhow!("unknown format '{f}' (vtk, vtu, mesh, msh, off, obj, stl, ply, moka)")
+            })
+        })
+        .transpose()
+}

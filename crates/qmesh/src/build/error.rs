@@ -1,0 +1,35 @@
+//! Errors of the builders: they name the cells (0-based, in file order).
+
+/// Why an indexed mesh cannot become a valid map.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum BuildError {
+    #[error("cell {cell}: node index {index} is out of range (the mesh has {points} points)")]
+    IndexOutOfRange {
+        cell: usize,
+        index: u32,
+        points: usize,
+    },
+    #[error("cell {cell}: {reason}")]
+    BadCell { cell: usize, reason: String },
+    #[error("polygon {polygon}: {reason}")]
+    BadPolygon { polygon: usize, reason: String },
+    #[error("a face {face:?} is shared by more than two cells (cells {a}, {b} and {c})")]
+    FaceSharedByMoreThanTwo {
+        face: Vec<u32>,
+        a: usize,
+        b: usize,
+        c: usize,
+    },
+    #[error(
+        "cells {a} and {b} meet on face {face:?} with inconsistent orientation (or are duplicates); \
+         try --fix-orientation"
+    )]
+    InconsistentOrientation { face: Vec<u32>, a: usize, b: usize },
+    #[error(
+        "edge {u}-{v} is used in the same direction by polygons {a} and {b}: \
+         a non-manifold edge or inconsistently oriented polygons"
+    )]
+    NonManifoldEdge { u: u32, v: u32, a: usize, b: usize },
+    #[error("the mesh has no cells and no polygons")]
+    Empty,
+}

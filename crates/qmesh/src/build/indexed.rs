@@ -1,0 +1,179 @@
+//! Indexed meshes as files store them: points plus cells given by node indices.
+
+use crate::cmap::faces;
+
+/// Kind of a volume cell, with VTK node orders (GUIDE §3).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum CellKind {
+    Tet,
+    Pyramid,
+    Prism,
+    Hex,
+    /// VTK polyhedron: connectivity `[nf, n0, v…, n1, v…]`, faces with outward normals.
+    Polyhedron,
+}
+
+impl CellKind {
+    /// Number of nodes of a fixed-size cell (None for polyhedra).
+    pub fn nodes(self) -> Option<usize> {
+        match self {
+            CellKind::Tet => Some(4),
+            CellKind::Pyramid => Some(5),
+            CellKind::Prism => Some(6),
+            CellKind::Hex => Some(8),
+            CellKind::Polyhedron => None,
+        }
+    }
+
+    /// The VTK cell type number.
+    pub fn vtk_type(self) -> u8 {
+        match self {
+            CellKind::Tet => 10,
+            CellKind::Pyramid => 14,
+            CellKind::Prism => 13,
+            CellKind::Hex => 12,
+            CellKind::Polyhedron => 42,
+        }
+    }
+
+    /// The kind of a VTK volume cell type number.
+    pub fn from_vtk_type(t: i64) -> Option<CellKind> {
+        match t {
+            10 => Some(CellKind::Tet),
+            14 => Some(CellKind::Pyramid),
+            13 => Some(CellKind::Prism),
+            12 => Some(CellKind::Hex),
+            42 => Some(CellKind::Polyhedron),
+            _ => None,
+        }
+    }
+
+    /// Face table in map orientation for fixed-size kinds.
+    pub fn face_table(self) -> &'static [&'static [usize]] {
+        match self {
+            CellKind::Tet => faces::TET,
+            CellKind::Pyramid => faces::PYRAMID,
+            CellKind::Prism => faces::PRISM,
+            CellKind::Hex => faces::HEX,
+            CellKind::Polyhedron => &[],
+        }
+    }
+
+    pub fn name(self) -> &'static str {
+        match self {
+            CellKind::Tet => "tet",
+            CellKind::Pyramid => "pyramid",
+            CellKind::Prism => "prism",
+            CellKind::Hex => "hex",
+            CellKind::Polyhedron => "polyhedron",
+        }
+    }
+}
+
+/// Points, volume cells and polygons as read from (or written to) a file.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct IndexedMesh {
+    pub points: Vec<[f64; 3]>,
+    pub kinds: Vec<CellKind>,
+    /// `offsets[i]..offsets[i + 1]` is the connectivity of cell i.
+    pub offsets: Vec<usize>,
+    pub conn: Vec<u32>,
+    /// One label per volume cell (Medit reference, gmsh entity, VTK CellEntityIds), or empty.
+    pub labels: Vec<i32>,
+    /// Polygons (surface meshes): `poly_offsets[i]..poly_offsets[i + 1]` in `poly_conn`.
+    pub poly_offsets: Vec<usize>,
+    pub poly_conn: Vec<u32>,
+    /// Things the reader skipped or repaired, for the user.
+    pub warnings: Vec<String>,
+}
+
+impl IndexedMesh {
+    pub fn new() -> Self {
+        IndexedMesh {
+            offsets: vec![0],
+            poly_offsets: vec![0],
+            ..Default::default()
+        }
+    }
+
+    pub fn nb_cells(&self) -> usize {
+        self.kinds.len()
+    }
+
+    pub fn nb_polygons(&self) -> usize {
+        self.poly_offsets.len().saturating_sub(1)
+    }
+
+    /// Appends a volume cell (nodes in VTK order, or the VTK polyhedron face stream).
+    pub fn push_cell(&mut self, kind: CellKind, nodes: &[u32], label: Option<i32>) {
+        self.kinds.push(kind);
+        self.conn.extend_from_slice(nodes);
+        self.offsets.push(self.conn.len());
+        if let Some(l) = label {
+            self.labels.resize(self.kinds.len() - 1, 0);
+            self.labels.push(l);
+        } else if !self.labels.is_empty() {
+            self.labels.push(0);
+        }
+    }
+
+    /// Appends a polygon.
+    pub fn push_polygon(&mut self, nodes: &[u32]) {
+        self.poly_conn.extend_from_slice(nodes);
+        self.poly_offsets.push(self.poly_conn.len());
+    }
+
+    pub fn cell(&self, i: usize) -> (CellKind, &[u32]) {
+        (
+            self.kinds[i],
+            &self.conn[self.offsets[i]..self.offsets[i + 1]],
+        )
+    }
+
+    pub fn polygon(&self, i: usize) -> &[u32] {
+        &self.poly_conn[self.poly_offsets[i]..self.poly_offsets[i + 1]]
+    }
+
+    pub fn label(&self, i: usize) -> Option<i32> {
+        self.labels.get(i).copied()
+    }
+
+    /// Whether this mesh has volume cells (otherwise it is a surface).
+    pub fn is_volume(&self) -> bool {
+        !self.kinds.is_empty()
+    }
+
+    /// Face cycles of cell i in map orientation (inward normals), or None when a
+    /// polyhedron's face stream is malformed.
+    pub fn cell_faces(&self, i: usize) -> Option<Vec<Vec<u32>>> {
+        let (kind, nodes) = self.cell(i);
+        if kind != CellKind::Polyhedron {
+            return Some(
+                kind.face_table()
+                    .iter()
+                    .map(|f| f.iter().map(|&k| nodes[k]).collect())
+                    .collect(),
+            );
+        }
+        let nf = *nodes.first()? as usize;
+        let mut faces = Vec::with_capacity(nf.min(nodes.len()));
+        let mut k = 1;
+        for _ in 0..nf {
+            let n = *nodes.get(k)? as usize;
+            let f = nodes.get(k + 1..k + 1 + n)?;
+            faces.push(f.iter().rev().copied().collect());
+            k += 1 + n;
+        }
+        (k == nodes.len()).then_some(faces)
+    }
+
+    /// Largest node index used by any cell or polygon, if any.
+    pub fn max_index(&self) -> Option<u32> {
+        let cells = (0..self.nb_cells()).flat_map(|i| {
+            let (kind, nodes) = self.cell(i);
+            let skip = if kind == CellKind::Polyhedron { 1 } else { 0 };
+            nodes.iter().skip(skip).copied()
+        });
+        cells.chain(self.poly_conn.iter().copied()).max()
+    }
+}

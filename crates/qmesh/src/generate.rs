@@ -1,0 +1,67 @@
+//! Built-in inputs: structured hexahedral grids and their tetrahedral splits.
+
+use crate::build::{CellKind, IndexedMesh};
+
+/// An `nx × ny × nz` grid of unit-spaced hexahedra over `[0, nx] × [0, ny] × [0, nz]`.
+///
+/// ```
+/// let g = qmesh::generate::hex_grid(2, 3, 4);
+/// assert_eq!((g.nb_cells(), g.points.len()), (24, 3 * 4 * 5));
+/// ```
+pub fn hex_grid(nx: usize, ny: usize, nz: usize) -> IndexedMesh {
+    let mut m = IndexedMesh::new();
+    let id = |i: usize, j: usize, k: usize| (i + (nx + 1) * (j + (ny + 1) * k)) as u32;
+    m.points.reserve((nx + 1) * (ny + 1) * (nz + 1));
+    for k in 0..=nz {
+        for j in 0..=ny {
+            for i in 0..=nx {
+                m.points.push([i as f64, j as f64, k as f64]);
+            }
+        }
+    }
+    for k in 0..nz {
+        for j in 0..ny {
+            for i in 0..nx {
+                let n = [
+                    id(i, j, k),
+                    id(i + 1, j, k),
+                    id(i + 1, j + 1, k),
+                    id(i, j + 1, k),
+                    id(i, j, k + 1),
+                    id(i + 1, j, k + 1),
+                    id(i + 1, j + 1, k + 1),
+                    id(i, j + 1, k + 1),
+                ];
+                m.push_cell(CellKind::Hex, &n, None);
+            }
+        }
+    }
+    m
+}
+
+/// The grid of [`hex_grid`] with every hexahedron split into 6 tetrahedra around its
+/// 0–6 diagonal (Kuhn split: conforming across faces because every cell is split the
+/// same way).
+pub fn tet_grid(nx: usize, ny: usize, nz: usize) -> IndexedMesh {
+    let hexes = hex_grid(nx, ny, nz);
+    let mut m = IndexedMesh {
+        points: hexes.points.clone(),
+        ..IndexedMesh::new()
+    };
+    // Paths 0 → 6 through the cube's vertices, each giving one tet (VTK positive order).
+    const KUHN: [[usize; 4]; 6] = [
+        [0, 1, 2, 6],
+        [0, 2, 3, 6],
+        [0, 3, 7, 6],
+        [0, 7, 4, 6],
+        [0, 4, 5, 6],
+        [0, 5, 1, 6],
+    ];
+    for c in 0..hexes.nb_cells() {
+        let h = hexes.cell(c).1;
+        for t in KUHN {
+            m.push_cell(CellKind::Tet, &t.map(|k| h[k]), None);
+        }
+    }
+    m
+}

@@ -1,0 +1,41 @@
+//! Geometry attached to vertices: vector helpers and signed volumes.
+
+mod volume;
+
+pub use volume::{signed_volume_of_faces, signed_volume_of_map_volume};
+
+/// a − b.
+#[inline]
+pub fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+/// a × b.
+#[inline]
+pub fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+/// a · b.
+#[inline]
+pub fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+/// Mean of points.
+pub fn centroid(points: impl IntoIterator<Item = [f64; 3]>) -> [f64; 3] {
+    let (mut s, mut n) = ([0.0; 3], 0.0);
+    for p in points {
+        s = [s[0] + p[0], s[1] + p[1], s[2] + p[2]];
+        n += 1.0;
+    }
+    if n == 0.0 {
+        s
+    } else {
+        [s[0] / n, s[1] / n, s[2] / n]
+    }
+}

@@ -1,0 +1,224 @@
+//! `.moka` (Moka modeler, ASCII generalized maps) ↔ combinatorial maps; format and
+//! conversion rules in `shared/data/patterns/cgal/FORMAT.md`.
+
+use std::io::Write;
+use std::path::Path;
+
+use super::error::{IoError, IoResult};
+use super::lexer::{Lexer, clip};
+use crate::cmap::{CMap3, Dart};
+
+struct GDart {
+    alpha: [u32; 4],
+    point: Option<[f64; 3]>,
+}
+
+fn parse_gdarts(lx: &mut Lexer<'_>) -> IoResult<Vec<GDart>> {
+    let first = lx.rest_of_line();
+    if !first.starts_with("Moka file") {
+        return Err(lx.err(format!(
+            "expected 'Moka file [ascii]', found '{}'",
+            clip(first)
+        )));
+    }
+    if first.contains("binary") {
+        return Err(IoError::unsupported(
+            lx.path(),
+            "binary Moka files are not supported",
+        ));
+    }
+    lx.rest_of_line(); // global mark state
+    let mut out = Vec::new();
+    while lx.remaining() > 0 {
+        let line_no_check = lx.peek().is_some();
+        if !line_no_check {
+            break;
+        }
+        let mut alpha = [0u32; 4];
+        for (i, a) in alpha.iter_mut().enumerate() {
+            let v: i64 = lx.parse(&format!("α{i} of g-dart {}", out.len()))?;
+            if v < 0 || v > u32::MAX as i64 {
+                return Err(lx.err(format!(
+                    "α{i} of g-dart {} is {v}: expected a g-dart index",
+                    out.len()
+                )));
+            }
+            *a = v as u32;
+        }
+        for k in 0..4 {
+            lx.parse::<i64>(&format!("mark byte {k}"))?;
+        }
+        let p: i64 = lx.parse("the point flag (0 or 1)")?;
+        let point = match p {
+            0 => None,
+            1 => Some(lx.point()?),
+            _ => return Err(lx.err(format!("expected the point flag 0 or 1, found {p}"))),
+        };
+        out.push(GDart { alpha, point });
+    }
+    Ok(out)
+}
+
+fn find(parent: &mut [u32], mut x: u32) -> u32 {
+    while parent[x as usize] != x {
+        parent[x as usize] = parent[parent[x as usize] as usize];
+        x = parent[x as usize];
+    }
+    x
+}
+
+/// Reads a `.moka` file as a combinatorial map (one orientation class per component).
+/// The map is a surface map (dimension 2) when some dart is 2-free.
+pub fn read(path: &Path, data: &[u8]) -> IoResult<CMap3> {
+    let mut lx = Lexer::new(path, data, None);
+    let g = parse_gdarts(&mut lx)?;
+    let n = g.len();
+    if n == 0 {
+        return Err(lx.err("expected at least one g-dart line"));
+    }
+    let bad = |msg: String| IoError::Unsupported {
+        path: path.into(),
+        msg,
+    };
+    for (k, d) in g.iter().enumerate() {
+        for i in 0..4 {
+            let a = d.alpha[i] as usize;
+            if a >= n {
+                return Err(bad(format!(
+                    "g-dart {k}: α{i} = {a} is out of range (the file has {n} g-darts)"
+                )));
+            }
+            if g[a].alpha[i] as usize != k {
+                return Err(bad(format!(
+                    "g-dart {k}: α{i} is not an involution (α{i}(α{i}({k})) ≠ {k})"
+                )));
+            }
+        }
+        if d.alpha[0] as usize == k {
+            return Err(bad(format!("g-dart {k}: α0 is free")));
+        }
+    }
+    // Orientation classes: 1 = kept, 2 = its α0 twin.
+    let mut class = vec![0u8; n];
+    let mut stack = Vec::new();
+    for s in 0..n {
+        if class[s] != 0 {
+            continue;
+        }
+        class[s] = 1;
+        class[g[s].alpha[0] as usize] = 2;
+        stack.push(s as u32);
+        while let Some(d) = stack.pop() {
+            let d = d as usize;
+            let a0 = g[d].alpha[0] as usize;
+            for i in 1..4 {
+                // αi∘α0 and α0∘αi stay in the class (skipping free αi).
+                let (ai_a0, ai_d) = (g[a0].alpha[i] as usize, g[d].alpha[i] as usize);
+                let via_twin = (ai_a0 != a0).then_some(ai_a0);
+                let via_self = (ai_d != d).then(|| g[ai_d].alpha[0] as usize);
+                for e in [via_twin, via_self].into_iter().flatten() {
+                    match class[e] {
+                        0 => {
+                            class[e] = 1;
+                            class[g[e].alpha[0] as usize] = 2;
+                            stack.push(e as u32);
+                        }
+                        2 => {
+                            return Err(bad(format!(
+                                "the generalized map is not orientable (g-dart {e})"
+                            )));
+                        }
+                        _ => {}
+                    }
+                }
+            }
+        }
+    }
+    // Vertex orbits ⟨α1, α2, α3⟩.
+    let mut parent: Vec<u32> = (0..n as u32).collect();
+    for (k, d) in g.iter().enumerate() {
+        for i in 1..4 {
+            let (a, b) = (find(&mut parent, k as u32), find(&mut parent, d.alpha[i]));
+            if a != b {
+                parent[a as usize] = b;
+            }
+        }
+    }
+    let mut map = CMap3::with_capacity(n / 2, n / 8);
+    let mut vid = vec![u32::MAX; n];
+    for (k, d) in g.iter().enumerate() {
+        if let Some(p) = d.point {
+            let r = find(&mut parent, k as u32) as usize;
+            if vid[r] == u32::MAX {
+                vid[r] = map.add_vertex(p);
+            }
+        }
+    }
+    let mut dart_of = vec![0u32; n];
+    for k in 0..n {
+        if class[k] == 1 {
+            let r = find(&mut parent, k as u32) as usize;
+            if vid[r] == u32::MAX {
+                return Err(bad(format!("the vertex of g-dart {k} has no point")));
+            }
+            dart_of[k] = map.create_dart(vid[r]).raw();
+        }
+    }
+    let mut two_free = false;
+    for k in 0..n {
+        if class[k] != 1 {
+            continue;
+        }
+        let d = Dart::from_raw(dart_of[k]).expect("kept darts exist");
+        let a0 = g[k].alpha[0] as usize;
+        for i in 1..4 {
+            let e = g[a0].alpha[i] as usize;
+            if e == a0 {
+                two_free |= i == 2;
+                continue;
+            }
+            let t = Dart::from_raw(dart_of[e])
+                .ok_or_else(|| bad(format!("g-dart {e} should be kept")))?;
+            map.link(d, i, t);
+        }
+    }
+    if two_free {
+        map.set_dimension(2);
+    }
+    Ok(map)
+}
+
+/// Writes a map as a `.moka` generalized map: dart k → g-darts 2k, 2k+1.
+pub fn write(path: &Path, map: &CMap3, w: &mut dyn Write) -> IoResult<()> {
+    let io = |e| IoError::io(path, e);
+    let mut index = vec![u32::MAX; map.dart_capacity()];
+    let darts: Vec<Dart> = map.darts().collect();
+    for (k, d) in darts.iter().enumerate() {
+        index[d.idx()] = k as u32;
+    }
+    let gi = |d: Option<Dart>| d.map(|d| index[d.idx()]);
+    let mut has_point = vec![false; map.nb_vertex_ids()];
+    writeln!(w, "Moka file [ascii]\n0 0 0 0 0 0 0 0 ").map_err(io)?;
+    for (k, &d) in darts.iter().enumerate() {
+        let (a, b) = (2 * k as u32, 2 * k as u32 + 1);
+        let prev = gi(map.beta(d, 0)).map_or(a, |p| 2 * p + 1);
+        let next = gi(map.beta(d, 1)).map_or(b, |p| 2 * p);
+        let o2 = gi(map.beta(d, 2));
+        let o3 = gi(map.beta(d, 3));
+        let v = map.vertex_of(d) as usize;
+        let point = if has_point[v] {
+            None
+        } else {
+            Some(map.position(v as u32))
+        };
+        has_point[v] = true;
+        let p = point.map_or("0".to_string(), |p| {
+            format!("1\t{}\t{}\t{}", p[0], p[1], p[2])
+        });
+        let (a2, b2) = o2.map_or((a, b), |m| (2 * m + 1, 2 * m));
+        let (a3, b3) = o3.map_or((a, b), |m| (2 * m + 1, 2 * m));
+        writeln!(w, "{b}\t{prev}\t{a2}\t{a3}\t0\t0\t0\t0\t{p}").map_err(io)?;
+        writeln!(w, "{a}\t{next}\t{b2}\t{b3}\t0\t0\t0\t0\t0").map_err(io)?;
+    }
+    Ok(())
+}

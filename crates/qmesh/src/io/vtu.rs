@@ -1,0 +1,166 @@
+//! VTK XML unstructured grids (`.vtu`) through the `vtkio` crate; the cell layout is
+//! then interpreted exactly as for legacy files.
+
+use std::io::Write;
+use std::path::Path;
+
+use vtkio::model::{
+    Attribute, Attributes, ByteOrder, CellType, Cells, DataArray, DataSet, IOBuffer, Piece,
+    UnstructuredGridPiece, Version, VertexNumbers, Vtk,
+};
+
+use super::error::{IoError, IoResult};
+use super::vtk_legacy::{LABEL_ARRAYS, assemble};
+use crate::build::{CellKind, IndexedMesh};
+
+fn flat_to_offsets(num_cells: u32, flat: &[u32]) -> Option<(Vec<usize>, Vec<i64>)> {
+    let mut offs = vec![0usize];
+    let mut conn = Vec::with_capacity(flat.len());
+    let mut k = 0usize;
+    for _ in 0..num_cells {
+        let m = *flat.get(k)? as usize;
+        conn.extend(flat.get(k + 1..k + 1 + m)?.iter().map(|&v| v as i64));
+        offs.push(conn.len());
+        k += 1 + m;
+    }
+    Some((offs, conn))
+}
+
+/// Parses a `.vtu` file (inline or appended data, ASCII, base64 or raw, compressed or not).
+pub fn read(path: &Path, data: &[u8]) -> IoResult<IndexedMesh> {
+    let vtk = Vtk::parse_xml(std::io::BufReader::new(data))
+        .map_err(|e| IoError::unsupported(path, format!("invalid VTK XML file: {e}")))?;
+    let err = |m: String| IoError::unsupported(path, m);
+    let pieces = match vtk.data {
+        DataSet::UnstructuredGrid { pieces, .. } => pieces,
+        _ => return Err(err("only UnstructuredGrid .vtu files are supported".into())),
+    };
+    let mut all = IndexedMesh::new();
+    for piece in pieces {
+        let p: UnstructuredGridPiece = match piece {
+            Piece::Inline(p) => *p,
+            _ => return Err(err("pieces stored in other files are not supported".into())),
+        };
+        let points: Vec<f64> = p
+            .points
+            .cast_into()
+            .ok_or_else(|| err("points are not numbers".into()))?;
+        if points.iter().any(|x| !x.is_finite()) {
+            return Err(err("expected finite point coordinates".into()));
+        }
+        let types: Vec<i64> = p.cells.types.iter().map(|&t| t as u8 as i64).collect();
+        let (n, flat) = p.cells.cell_verts.into_legacy();
+        let cells = flat_to_offsets(n, &flat)
+            .ok_or_else(|| err("cell connectivity is shorter than its offsets".into()))?;
+        let labels = p.data.cell.iter().find_map(|a| match a {
+            Attribute::DataArray(DataArray { name, data, .. })
+                if LABEL_ARRAYS.contains(&name.as_str()) =>
+            {
+                data.cast_into::<i64>()
+            }
+            _ => None,
+        });
+        let mesh = assemble(
+            &err,
+            points.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect(),
+            Some(cells),
+            Some(types),
+            Vec::new(),
+            labels,
+        )?;
+        merge(&mut all, mesh);
+    }
+    Ok(all)
+}
+
+fn merge(all: &mut IndexedMesh, m: IndexedMesh) {
+    let base = all.points.len() as u32;
+    all.points.extend_from_slice(&m.points);
+    for i in 0..m.nb_cells() {
+        let (k, nodes) = m.cell(i);
+        let shifted: Vec<u32> = if k == CellKind::Polyhedron {
+            let mut out = vec![nodes[0]];
+            let mut j = 1;
+            while j < nodes.len() {
+                let c = nodes[j] as usize;
+                out.push(nodes[j]);
+                out.extend(nodes[j + 1..j + 1 + c].iter().map(|v| v + base));
+                j += 1 + c;
+            }
+            out
+        } else {
+            nodes.iter().map(|v| v + base).collect()
+        };
+        all.push_cell(k, &shifted, m.label(i));
+    }
+    for i in 0..m.nb_polygons() {
+        all.push_polygon(&m.polygon(i).iter().map(|v| v + base).collect::<Vec<_>>());
+    }
+    all.warnings.extend(m.warnings);
+}
+
+/// Writes a `.vtu` file (binary base64 inline data) with a `label` cell array when
+/// the mesh has labels.
+///
+/// # Errors
+/// Polyhedra are not supported by the XML writer we use; write legacy `.vtk` instead.
+pub fn write(path: &Path, mesh: &IndexedMesh, w: &mut dyn Write) -> IoResult<()> {
+    let mut types = Vec::new();
+    let mut conn: Vec<u64> = Vec::new();
+    let mut offsets: Vec<u64> = Vec::new();
+    if mesh.is_volume() {
+        for i in 0..mesh.nb_cells() {
+            let (k, nodes) = mesh.cell(i);
+            types.push(match k {
+                CellKind::Tet => CellType::Tetra,
+                CellKind::Pyramid => CellType::Pyramid,
+                CellKind::Prism => CellType::Wedge,
+                CellKind::Hex => CellType::Hexahedron,
+                CellKind::Polyhedron => {
+                    return Err(IoError::unsupported(
+                        path,
+                        "polyhedra cannot be written to .vtu yet; use .vtk",
+                    ));
+                }
+            });
+            conn.extend(nodes.iter().map(|&v| v as u64));
+            offsets.push(conn.len() as u64);
+        }
+    } else {
+        for i in 0..mesh.nb_polygons() {
+            let p = mesh.polygon(i);
+            types.push(match p.len() {
+                3 => CellType::Triangle,
+                4 => CellType::Quad,
+                _ => CellType::Polygon,
+            });
+            conn.extend(p.iter().map(|&v| v as u64));
+            offsets.push(conn.len() as u64);
+        }
+    }
+    let mut data = Attributes::new();
+    if mesh.is_volume() && !mesh.labels.is_empty() {
+        data.cell
+            .push(Attribute::scalars("label", 1).with_data(IOBuffer::I32(mesh.labels.clone())));
+    }
+    let piece = UnstructuredGridPiece {
+        points: IOBuffer::F64(mesh.points.iter().flatten().copied().collect()),
+        cells: Cells {
+            cell_verts: VertexNumbers::XML {
+                connectivity: conn,
+                offsets,
+            },
+            types,
+        },
+        data,
+    };
+    let vtk = Vtk {
+        version: Version::new_xml(1, 0),
+        title: String::new(),
+        byte_order: ByteOrder::LittleEndian,
+        data: DataSet::inline(piece),
+        file_path: None,
+    };
+    vtk.write_xml(w)
+        .map_err(|e| IoError::unsupported(path, format!("VTU writer: {e}")))
+}
