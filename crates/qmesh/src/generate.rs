@@ -44,19 +44,9 @@ pub fn hex_grid(nx: usize, ny: usize, nz: usize) -> IndexedMesh {
 /// same way).
 pub fn tet_grid(nx: usize, ny: usize, nz: usize) -> IndexedMesh {
     let hexes = hex_grid(nx, ny, nz);
-    let mut m = IndexedMesh {
-        points: hexes.points.clone(),
-        ..IndexedMesh::new()
-    };
+    let mut m = IndexedMesh { points: hexes.points.clone(), ..IndexedMesh::new() };
     // Paths 0 → 6 through the cube's vertices, each giving one tet (VTK positive order).
-    const KUHN: [[usize; 4]; 6] = [
-        [0, 1, 2, 6],
-        [0, 2, 3, 6],
-        [0, 3, 7, 6],
-        [0, 7, 4, 6],
-        [0, 4, 5, 6],
-        [0, 5, 1, 6],
-    ];
+    const KUHN: [[usize; 4]; 6] = [[0, 1, 2, 6], [0, 2, 3, 6], [0, 3, 7, 6], [0, 7, 4, 6], [0, 4, 5, 6], [0, 5, 1, 6]];
     for c in 0..hexes.nb_cells() {
         let h = hexes.cell(c).1;
         for t in KUHN {

@@ -19,14 +19,7 @@ fn unit_cube_vertices(m: &mut CMap3, x0: f64) -> [u32; 8] {
 
 fn assert_valid(m: &CMap3) {
     let v = m.is_valid();
-    assert!(
-        v.is_empty(),
-        "invalid map: {}",
-        v.iter()
-            .map(|x| x.to_string())
-            .collect::<Vec<_>>()
-            .join("; ")
-    );
+    assert!(v.is_empty(), "invalid map: {}", v.iter().map(|x| x.to_string()).collect::<Vec<_>>().join("; "));
 }
 
 /// Finds the dart of `face_of` whose origin is `from` and target `to`.
@@ -65,27 +58,13 @@ fn paper_2022_fig1_two_cubes() {
     m.sew3(da, partner).unwrap();
     assert_valid(&m);
     assert_eq!(m.beta(da, 3), Some(partner)); // β3(a) = 1
-    let (bb, dd, ee) = (
-        m.beta(da, 1).unwrap(),
-        m.beta(da, 0).unwrap(),
-        m.beta(da, 2).unwrap(),
-    );
+    let (bb, dd, ee) = (m.beta(da, 1).unwrap(), m.beta(da, 0).unwrap(), m.beta(da, 2).unwrap());
     assert_eq!(m.vertex_of(bb), a[1]); // β1(a) = b continues the face
     assert_eq!(m.vertex_of(m.next(dd)), a[2]); // β0(a) = d ends where a starts
     assert_eq!((m.vertex_of(ee), m.vertex_of(m.next(ee))), (a[1], a[2])); // β2(a) = e: same edge, other face
     assert!(m.orbit(c1, Orbit::Volume).contains(&ee));
     let c = m.count_cells();
-    assert_eq!(
-        (
-            c.darts,
-            c.vertices,
-            c.edges,
-            c.faces,
-            c.volumes,
-            c.components
-        ),
-        (48, 12, 20, 11, 2, 1)
-    );
+    assert_eq!((c.darts, c.vertices, c.edges, c.faces, c.volumes, c.components), (48, 12, 20, 11, 2, 1));
     assert_eq!(m.euler_characteristic(), 1);
     assert_eq!(m.boundary_faces(), 10);
     // Removing the shared face merges the cubes into one volume of 40 darts.
@@ -100,15 +79,8 @@ fn paper_2022_fig1_two_cubes() {
 fn paper_2025_fig1_prism_and_tet() {
     let mut m = CMap3::new();
     // VTK wedge: 0-1-2 normal points away from 3-4-5.
-    let p = [
-        [0., 0., 0.],
-        [0., 1., 0.],
-        [1., 0., 0.],
-        [0., 0., 1.],
-        [0., 1., 1.],
-        [1., 0., 1.],
-    ]
-    .map(|q| m.add_vertex(q));
+    let p =
+        [[0., 0., 0.], [0., 1., 0.], [1., 0., 0.], [0., 0., 1.], [0., 1., 1.], [1., 0., 1.]].map(|q| m.add_vertex(q));
     let apex = m.add_vertex([0.3, 0.3, 2.0]);
     let prism = m.make_prism(p);
     // The tet sits on the top triangle 3-4-5; VTK tet 0-1-2 normal toward 3 (the apex, +z).
@@ -153,10 +125,7 @@ fn split_edge_across_two_cubes_keeps_marks_on_original_half() {
     assert_eq!(new.len(), 2);
     assert_eq!(m.nb_darts(), 48 + 2 * edge);
     let p = m.point(new[0]);
-    assert!(
-        (p[0] - 1.0).abs() + (p[1] - 2.0 / 3.0).abs() + p[2].abs() < 1e-12,
-        "{p:?}"
-    );
+    assert!((p[0] - 1.0).abs() + (p[1] - 2.0 / 3.0).abs() + p[2].abs() < 1e-12, "{p:?}");
     assert!(m.is_marked(da, flag));
     assert!(!m.is_marked(new[0], flag) && !m.is_marked(new[1], flag));
     let c = m.count_cells();
@@ -176,10 +145,7 @@ fn sew_unsew_and_errors() {
     let da = dart_from_to(&m, c1, a[2], a[1]);
     let db = dart_from_to(&m, c2, a[1], a[2]);
     m.sew3(da, db).unwrap();
-    assert!(matches!(
-        m.sew3(da, db),
-        Err(MapError::NotSewable { i: 3, .. })
-    ));
+    assert!(matches!(m.sew3(da, db), Err(MapError::NotSewable { i: 3, .. })));
     m.unsew3(da).unwrap();
     assert_valid(&m);
     assert_eq!(m.count_cells().components, 2);
@@ -202,10 +168,7 @@ fn sew_unsew_and_errors() {
     assert_eq!(removed, 24);
     assert_valid(&m);
     assert_eq!(m.boundary_faces(), 6);
-    assert!(matches!(
-        m.remove_face(c1),
-        Err(MapError::FaceOnBoundary(_))
-    ));
+    assert!(matches!(m.remove_face(c1), Err(MapError::FaceOnBoundary(_))));
     let before = m.nb_darts();
     let map = m.compact();
     assert_valid(&m);
@@ -220,20 +183,9 @@ fn polyhedron_errors() {
     let mut m = CMap3::new();
     let v: Vec<u32> = (0..4).map(|i| m.add_vertex([i as f64, 0., 0.])).collect();
     let open = [vec![v[0], v[1], v[2]], vec![v[1], v[0], v[3]]];
-    assert!(matches!(
-        m.make_polyhedron(&open),
-        Err(MapError::OpenPolyhedron(..))
-    ));
-    let flipped = [
-        vec![v[0], v[1], v[2]],
-        vec![v[0], v[1], v[3]],
-        vec![v[2], v[1], v[3]],
-        vec![v[0], v[2], v[3]],
-    ];
-    assert!(matches!(
-        m.make_polyhedron(&flipped),
-        Err(MapError::NonManifoldPolyhedron(..))
-    ));
+    assert!(matches!(m.make_polyhedron(&open), Err(MapError::OpenPolyhedron(..))));
+    let flipped = [vec![v[0], v[1], v[2]], vec![v[0], v[1], v[3]], vec![v[2], v[1], v[3]], vec![v[0], v[2], v[3]]];
+    assert!(matches!(m.make_polyhedron(&flipped), Err(MapError::NonManifoldPolyhedron(..))));
     assert_eq!(m.nb_darts(), 0);
 }
 
@@ -241,9 +193,7 @@ fn polyhedron_errors() {
 fn one_sew_keeps_beta13_involution() {
     // Build two triangles 3-sewn, 1-unsew an edge on one side and sew it back.
     let mut m = CMap3::new();
-    let v: Vec<u32> = (0..4)
-        .map(|i| m.add_vertex([i as f64, (i % 2) as f64, 0.]))
-        .collect();
+    let v: Vec<u32> = (0..4).map(|i| m.add_vertex([i as f64, (i % 2) as f64, 0.])).collect();
     let t1 = m.make_tetrahedron([v[0], v[1], v[2], v[3]]);
     let w = m.add_vertex([0., 0., -1.]);
     let t2 = m.make_tetrahedron([v[0], v[2], v[1], w]);

@@ -28,14 +28,9 @@ pub struct Args {
 
 pub fn run(a: Args) -> Result<ExitCode> {
     if !a.force && same_file(&a.input.input, &a.output) {
-        bail!(
-            "{} is the input file; refusing to overwrite it (use --force)",
-            a.output.display()
-        );
+        bail!("{} is the input file; refusing to overwrite it (use --force)", a.output.display());
     }
-    let opts = BuildOptions {
-        fix_orientation: a.input.fix_orientation,
-    };
+    let opts = BuildOptions { fix_orientation: a.input.fix_orientation };
     let loaded = load_map(&a.input.input, parse_format(&a.input.format)?, &opts)?;
     for w in &loaded.warnings {
         eprintln!("warning: {w}");
@@ -46,22 +41,13 @@ pub fn run(a: Args) -> Result<ExitCode> {
             loaded.report.inverted_cells
         );
     }
-    write_map(
-        &a.output,
-        &loaded.map,
-        parse_format(&a.to)?,
-        &WriteOptions { binary: a.binary },
-    )?;
+    write_map(&a.output, &loaded.map, parse_format(&a.to)?, &WriteOptions { binary: a.binary })?;
     let c = loaded.map.count_cells();
     println!(
         "wrote {} ({} vertices, {} volumes, {} faces)",
         a.output.display(),
         c.vertices,
-        if loaded.map.dimension() == 3 {
-            c.volumes
-        } else {
-            0
-        },
+        if loaded.map.dimension() == 3 { c.volumes } else { 0 },
         c.faces
     );
     Ok(ExitCode::SUCCESS)

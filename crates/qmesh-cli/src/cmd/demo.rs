@@ -40,48 +40,17 @@ pub fn run(a: Args) -> Result<ExitCode> {
     let opts = BuildOptions::default();
     let (mut hex, _) = build_volume_map(&hex_grid(6, 4, 3), &opts)?;
     describe("6×4×3 hex grid", &hex);
-    write_map(
-        &a.output.join("hex_grid.vtk"),
-        &hex,
-        None,
-        &WriteOptions::default(),
-    )?;
+    write_map(&a.output.join("hex_grid.vtk"), &hex, None, &WriteOptions::default())?;
     let (tet, _) = build_volume_map(&tet_grid(4, 4, 4), &opts)?;
     describe("4×4×4 grid split into 384 tets", &tet);
-    write_map(
-        &a.output.join("tet_grid.mesh"),
-        &tet,
-        None,
-        &WriteOptions::default(),
-    )?;
+    write_map(&a.output.join("tet_grid.mesh"), &tet, None, &WriteOptions::default())?;
     let edges = hex.split_all_edges(2)?;
     describe(&format!("hex grid, {edges} edges split in 2"), &hex);
-    write_map(
-        &a.output.join("hex_grid_split.vtk"),
-        &hex,
-        None,
-        &WriteOptions::default(),
-    )?;
-    write_map(
-        &a.output.join("hex_grid_boundary.off"),
-        &hex,
-        None,
-        &WriteOptions::default(),
-    )?;
-    write_map(
-        &a.output.join("tet_grid.moka"),
-        &tet,
-        None,
-        &WriteOptions::default(),
-    )?;
-    println!(
-        "files: hex_grid.vtk, tet_grid.mesh, hex_grid_split.vtk (edges split: cells become polyhedra),"
-    );
+    write_map(&a.output.join("hex_grid_split.vtk"), &hex, None, &WriteOptions::default())?;
+    write_map(&a.output.join("hex_grid_boundary.off"), &hex, None, &WriteOptions::default())?;
+    write_map(&a.output.join("tet_grid.moka"), &tet, None, &WriteOptions::default())?;
+    println!("files: hex_grid.vtk, tet_grid.mesh, hex_grid_split.vtk (edges split: cells become polyhedra),");
     println!("       hex_grid_boundary.off (boundary surface), tet_grid.moka (generalized map)");
-    println!(
-        "done in {:.2} s — try: qmesh info {}/tet_grid.mesh",
-        t.elapsed().as_secs_f64(),
-        a.output.display()
-    );
+    println!("done in {:.2} s — try: qmesh info {}/tet_grid.mesh", t.elapsed().as_secs_f64(), a.output.display());
     Ok(ExitCode::SUCCESS)
 }

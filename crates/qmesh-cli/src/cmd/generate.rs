@@ -29,10 +29,7 @@ pub enum Kind {
 }
 
 pub fn parse_size(s: &str) -> Result<[usize; 3]> {
-    let v: Vec<usize> = s
-        .split(',')
-        .map(|x| x.trim().parse())
-        .collect::<Result<_, _>>()?;
+    let v: Vec<usize> = s.split(',').map(|x| x.trim().parse()).collect::<Result<_, _>>()?;
     match v.as_slice() {
         [n] => Ok([*n; 3]),
         [x, y, z] => Ok([*x, *y, *z]),
@@ -49,11 +46,6 @@ pub fn run(a: Args) -> Result<ExitCode> {
     };
     let format: Format = resolve_format(&a.output, None)?;
     write_indexed(&a.output, &mesh, format, &WriteOptions { binary: a.binary })?;
-    println!(
-        "wrote {} ({} points, {} cells)",
-        a.output.display(),
-        mesh.points.len(),
-        mesh.nb_cells()
-    );
+    println!("wrote {} ({} points, {} cells)", a.output.display(), mesh.points.len(), mesh.nb_cells());
     Ok(ExitCode::SUCCESS)
 }

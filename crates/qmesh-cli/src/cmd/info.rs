@@ -21,9 +21,7 @@ pub struct Args {
 }
 
 pub fn run(a: Args) -> Result<ExitCode> {
-    let opts = BuildOptions {
-        fix_orientation: a.input.fix_orientation,
-    };
+    let opts = BuildOptions { fix_orientation: a.input.fix_orientation };
     let loaded = load_map(&a.input.input, parse_format(&a.input.format)?, &opts)?;
     let map: &CMap3 = &loaded.map;
     let c = map.count_cells();
@@ -89,18 +87,10 @@ pub fn run(a: Args) -> Result<ExitCode> {
         println!(
             "  inverted cells {}{}",
             loaded.report.inverted_cells,
-            if loaded.report.flipped_cells > 0 {
-                " (flipped)"
-            } else {
-                ""
-            }
+            if loaded.report.flipped_cells > 0 { " (flipped)" } else { "" }
         );
     }
-    println!(
-        "  Euler characteristic {}  components {}",
-        c.euler_characteristic(map.dimension()),
-        c.components
-    );
+    println!("  Euler characteristic {}  components {}", c.euler_characteristic(map.dimension()), c.components);
     println!(
         "  valid: {}",
         if violations.is_empty() {

@@ -28,9 +28,8 @@ pub struct InputArgs {
 pub fn parse_format(s: &Option<String>) -> Result<Option<Format>> {
     s.as_deref()
         .map(|f| {
-            Format::from_name(f).ok_or_else(|| {
-                anyhow!("unknown format '{f}' (vtk, vtu, mesh, msh, off, obj, stl, ply, moka)")
-            })
+            Format::from_name(f)
+                .ok_or_else(|| anyhow!("unknown format '{f}' (vtk, vtu, mesh, msh, off, obj, stl, ply, moka)"))
         })
         .transpose()
 }

@@ -18,24 +18,14 @@ pub struct Args {
 }
 
 pub fn run(a: Args) -> Result<ExitCode> {
-    let opts = BuildOptions {
-        fix_orientation: a.input.fix_orientation,
-    };
+    let opts = BuildOptions { fix_orientation: a.input.fix_orientation };
     let loaded = load_map(&a.input.input, parse_format(&a.input.format)?, &opts)?;
     let v = loaded.map.is_valid();
     if v.is_empty() {
-        println!(
-            "{}: valid ({} darts)",
-            a.input.input.display(),
-            loaded.map.nb_darts()
-        );
+        println!("{}: valid ({} darts)", a.input.input.display(), loaded.map.nb_darts());
         return Ok(ExitCode::SUCCESS);
     }
-    println!(
-        "{}: INVALID, {} violations",
-        a.input.input.display(),
-        v.len()
-    );
+    println!("{}: INVALID, {} violations", a.input.input.display(), v.len());
     for x in v.iter().take(a.max) {
         println!("  {x}");
     }

@@ -4,22 +4,13 @@
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 pub enum BuildError {
     #[error("cell {cell}: node index {index} is out of range (the mesh has {points} points)")]
-    IndexOutOfRange {
-        cell: usize,
-        index: u32,
-        points: usize,
-    },
+    IndexOutOfRange { cell: usize, index: u32, points: usize },
     #[error("cell {cell}: {reason}")]
     BadCell { cell: usize, reason: String },
     #[error("polygon {polygon}: {reason}")]
     BadPolygon { polygon: usize, reason: String },
     #[error("a face {face:?} is shared by more than two cells (cells {a}, {b} and {c})")]
-    FaceSharedByMoreThanTwo {
-        face: Vec<u32>,
-        a: usize,
-        b: usize,
-        c: usize,
-    },
+    FaceSharedByMoreThanTwo { face: Vec<u32>, a: usize, b: usize, c: usize },
     #[error(
         "cells {a} and {b} meet on face {face:?} with inconsistent orientation (or are duplicates); \
          try --fix-orientation"

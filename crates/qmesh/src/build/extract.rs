@@ -131,13 +131,7 @@ fn standard_nodes(map: &CMap3, kind: CellKind, faces: &[(Dart, usize)]) -> Optio
     let have: rustc_hash::FxHashSet<super::face_key::FaceKey> = faces
         .iter()
         .map(|&(x, n)| {
-            super::face_key::FaceKey::of(
-                &cycle(map, x, n)
-                    .iter()
-                    .map(|&y| map.vertex_of(y))
-                    .collect::<Vec<_>>(),
-                false,
-            )
+            super::face_key::FaceKey::of(&cycle(map, x, n).iter().map(|&y| map.vertex_of(y)).collect::<Vec<_>>(), false)
         })
         .collect();
     let ok = kind.face_table().iter().all(|f| {
@@ -176,12 +170,7 @@ pub fn extract(map: &CMap3) -> (IndexedMesh, ExtractedKinds) {
         }
     } else {
         for d in map.cells(Orbit::HalfFace) {
-            polys.push(
-                cycle(map, d, face_len(map, d))
-                    .iter()
-                    .map(|&x| map.vertex_of(x))
-                    .collect(),
-            );
+            polys.push(cycle(map, d, face_len(map, d)).iter().map(|&x| map.vertex_of(x)).collect());
         }
     }
     let mut newid = vec![u32::MAX; map.nb_vertex_ids()];
@@ -235,10 +224,7 @@ pub fn boundary_polygons(map: &CMap3) -> IndexedMesh {
         if !map.is_free(d, 3) {
             continue;
         }
-        let mut p: Vec<u32> = cycle(map, d, face_len(map, d))
-            .iter()
-            .map(|&x| map.vertex_of(x))
-            .collect();
+        let mut p: Vec<u32> = cycle(map, d, face_len(map, d)).iter().map(|&x| map.vertex_of(x)).collect();
         p.reverse();
         for v in p.iter_mut() {
             if newid[*v as usize] == u32::MAX {

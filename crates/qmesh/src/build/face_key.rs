@@ -15,11 +15,7 @@ impl FaceKey {
     pub fn of(cycle: &[u32], reversed: bool) -> FaceKey {
         let n = cycle.len();
         let at = |k: usize| {
-            if reversed {
-                cycle[(n - k % n) % n]
-            } else {
-                cycle[k % n]
-            }
+            if reversed { cycle[(n - k % n) % n] } else { cycle[k % n] }
         };
         let start = (0..n).min_by_key(|&k| at(k)).unwrap_or(0);
         if n <= 4 {
@@ -40,21 +36,9 @@ mod tests {
 
     #[test]
     fn rotations_match_and_reversal_matches_opposite() {
-        assert_eq!(
-            FaceKey::of(&[5, 2, 9], false),
-            FaceKey::of(&[2, 9, 5], false)
-        );
-        assert_eq!(
-            FaceKey::of(&[5, 2, 9], true),
-            FaceKey::of(&[9, 2, 5], false)
-        );
-        assert_ne!(
-            FaceKey::of(&[5, 2, 9], false),
-            FaceKey::of(&[9, 2, 5], false)
-        );
-        assert_eq!(
-            FaceKey::of(&[1, 2, 3, 4, 5], true),
-            FaceKey::of(&[5, 4, 3, 2, 1], false)
-        );
+        assert_eq!(FaceKey::of(&[5, 2, 9], false), FaceKey::of(&[2, 9, 5], false));
+        assert_eq!(FaceKey::of(&[5, 2, 9], true), FaceKey::of(&[9, 2, 5], false));
+        assert_ne!(FaceKey::of(&[5, 2, 9], false), FaceKey::of(&[9, 2, 5], false));
+        assert_eq!(FaceKey::of(&[1, 2, 3, 4, 5], true), FaceKey::of(&[5, 4, 3, 2, 1], false));
     }
 }

@@ -89,11 +89,7 @@ pub struct IndexedMesh {
 
 impl IndexedMesh {
     pub fn new() -> Self {
-        IndexedMesh {
-            offsets: vec![0],
-            poly_offsets: vec![0],
-            ..Default::default()
-        }
+        IndexedMesh { offsets: vec![0], poly_offsets: vec![0], ..Default::default() }
     }
 
     pub fn nb_cells(&self) -> usize {
@@ -124,10 +120,7 @@ impl IndexedMesh {
     }
 
     pub fn cell(&self, i: usize) -> (CellKind, &[u32]) {
-        (
-            self.kinds[i],
-            &self.conn[self.offsets[i]..self.offsets[i + 1]],
-        )
+        (self.kinds[i], &self.conn[self.offsets[i]..self.offsets[i + 1]])
     }
 
     pub fn polygon(&self, i: usize) -> &[u32] {
@@ -148,12 +141,7 @@ impl IndexedMesh {
     pub fn cell_faces(&self, i: usize) -> Option<Vec<Vec<u32>>> {
         let (kind, nodes) = self.cell(i);
         if kind != CellKind::Polyhedron {
-            return Some(
-                kind.face_table()
-                    .iter()
-                    .map(|f| f.iter().map(|&k| nodes[k]).collect())
-                    .collect(),
-            );
+            return Some(kind.face_table().iter().map(|f| f.iter().map(|&k| nodes[k]).collect()).collect());
         }
         let nf = *nodes.first()? as usize;
         let mut faces = Vec::with_capacity(nf.min(nodes.len()));

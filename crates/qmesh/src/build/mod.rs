@@ -20,13 +20,6 @@ pub use volume::{BuildOptions, BuildReport, build_volume_map};
 use crate::cmap::CMap3;
 
 /// Builds a volume map when the mesh has volume cells, a surface map otherwise.
-pub fn build_map(
-    mesh: &IndexedMesh,
-    opts: &BuildOptions,
-) -> Result<(CMap3, BuildReport), BuildError> {
-    if mesh.is_volume() {
-        build_volume_map(mesh, opts)
-    } else {
-        build_surface_map(mesh)
-    }
+pub fn build_map(mesh: &IndexedMesh, opts: &BuildOptions) -> Result<(CMap3, BuildReport), BuildError> {
+    if mesh.is_volume() { build_volume_map(mesh, opts) } else { build_surface_map(mesh) }
 }

@@ -32,10 +32,7 @@ pub fn build_surface_map(mesh: &IndexedMesh) -> Result<(CMap3, BuildReport), Bui
         if let Some(&bad) = poly.iter().find(|&&v| v as usize >= mesh.points.len()) {
             return Err(BuildError::BadPolygon {
                 polygon: pi,
-                reason: format!(
-                    "node index {bad} is out of range (the mesh has {} points)",
-                    mesh.points.len()
-                ),
+                reason: format!("node index {bad} is out of range (the mesh has {} points)", mesh.points.len()),
             });
         }
         let n = poly.len();
@@ -49,12 +46,7 @@ pub fn build_surface_map(mesh: &IndexedMesh) -> Result<(CMap3, BuildReport), Bui
             let (u, v) = (poly[k], poly[(k + 1) % n]);
             used[u as usize] = true;
             if let Some(&(_, other)) = half.get(&(u, v)) {
-                return Err(BuildError::NonManifoldEdge {
-                    u,
-                    v,
-                    a: other as usize,
-                    b: pi,
-                });
+                return Err(BuildError::NonManifoldEdge { u, v, a: other as usize, b: pi });
             }
             half.insert((u, v), (d, pi as u32));
             d = map.next(d);

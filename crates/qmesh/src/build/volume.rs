@@ -45,18 +45,12 @@ struct OpenFace {
 /// # Errors
 /// A node index out of range, a cell that is not a closed manifold polyhedron, a face
 /// shared by more than two cells, or two cells meeting with inconsistent orientation.
-pub fn build_volume_map(
-    mesh: &IndexedMesh,
-    opts: &BuildOptions,
-) -> Result<(CMap3, BuildReport), BuildError> {
+pub fn build_volume_map(mesh: &IndexedMesh, opts: &BuildOptions) -> Result<(CMap3, BuildReport), BuildError> {
     if mesh.nb_cells() == 0 {
         return Err(BuildError::Empty);
     }
     let mut report = BuildReport::default();
-    let est_darts: usize = (0..mesh.nb_cells())
-        .map(|i| mesh.offsets[i + 1] - mesh.offsets[i])
-        .sum::<usize>()
-        * 3;
+    let est_darts: usize = (0..mesh.nb_cells()).map(|i| mesh.offsets[i + 1] - mesh.offsets[i]).sum::<usize>() * 3;
     let mut map = CMap3::with_capacity(est_darts, mesh.points.len());
     for &p in &mesh.points {
         map.add_vertex(p);
@@ -69,17 +63,12 @@ pub fn build_volume_map(
     let mut open: FxHashMap<FaceKey, OpenFace> = FxHashMap::default();
     open.reserve(est_darts / 6);
     for cell in 0..mesh.nb_cells() {
-        let mut faces = mesh.cell_faces(cell).ok_or_else(|| BuildError::BadCell {
-            cell,
-            reason: "malformed polyhedron face stream".into(),
-        })?;
+        let mut faces = mesh
+            .cell_faces(cell)
+            .ok_or_else(|| BuildError::BadCell { cell, reason: "malformed polyhedron face stream".into() })?;
         for &v in faces.iter().flatten() {
             if v as usize >= mesh.points.len() {
-                return Err(BuildError::IndexOutOfRange {
-                    cell,
-                    index: v,
-                    points: mesh.points.len(),
-                });
+                return Err(BuildError::IndexOutOfRange { cell, index: v, points: mesh.points.len() });
             }
             used[v as usize] = true;
         }
@@ -93,12 +82,8 @@ pub fn build_volume_map(
         } else if vol == 0.0 {
             report.degenerate_cells += 1;
         }
-        let firsts = map
-            .make_polyhedron_faces(&faces)
-            .map_err(|e| BuildError::BadCell {
-                cell,
-                reason: e.to_string(),
-            })?;
+        let firsts =
+            map.make_polyhedron_faces(&faces).map_err(|e| BuildError::BadCell { cell, reason: e.to_string() })?;
         if labelled {
             let label = mesh.labels[cell];
             for d in map.orbit(firsts[0], Orbit::Volume) {
@@ -125,12 +110,7 @@ fn sew_or_register(
     if let Some(other) = open.get_mut(&FaceKey::of(f, true)) {
         if let Some(b) = other.partner {
             let (a, b) = (other.cell as usize, b as usize);
-            return Err(BuildError::FaceSharedByMoreThanTwo {
-                face: f.to_vec(),
-                a,
-                b,
-                c: cell,
-            });
+            return Err(BuildError::FaceSharedByMoreThanTwo { face: f.to_vec(), a, b, c: cell });
         }
         other.partner = Some(cell as u32);
         let mut y = other.dart;
@@ -153,20 +133,9 @@ fn sew_or_register(
     }
     let key = FaceKey::of(f, false);
     if let Some(same) = open.get(&key) {
-        return Err(BuildError::InconsistentOrientation {
-            face: f.to_vec(),
-            a: same.cell as usize,
-            b: cell,
-        });
+        return Err(BuildError::InconsistentOrientation { face: f.to_vec(), a: same.cell as usize, b: cell });
     }
-    open.insert(
-        key,
-        OpenFace {
-            cell: cell as u32,
-            dart: d,
-            partner: None,
-        },
-    );
+    open.insert(key, OpenFace { cell: cell as u32, dart: d, partner: None });
     Ok(())
 }
 

@@ -9,9 +9,7 @@ pub struct BitSet {
 impl BitSet {
     /// An empty set able to hold indices below `n` (it grows on demand).
     pub fn with_len(n: usize) -> Self {
-        BitSet {
-            words: vec![0; n.div_ceil(64)],
-        }
+        BitSet { words: vec![0; n.div_ceil(64)] }
     }
 
     /// Make room for indices below `n`.
@@ -24,9 +22,7 @@ impl BitSet {
 
     #[inline]
     pub fn get(&self, i: usize) -> bool {
-        self.words
-            .get(i >> 6)
-            .is_some_and(|w| w & (1 << (i & 63)) != 0)
+        self.words.get(i >> 6).is_some_and(|w| w & (1 << (i & 63)) != 0)
     }
 
     /// Sets bit `i`; returns whether it was clear before.

@@ -44,12 +44,7 @@ impl CMap3 {
                 continue;
             }
             let b = self.betas[i];
-            betas.push([
-                dmap[b[0] as usize],
-                dmap[b[1] as usize],
-                dmap[b[2] as usize],
-                dmap[b[3] as usize],
-            ]);
+            betas.push([dmap[b[0] as usize], dmap[b[1] as usize], dmap[b[2] as usize], dmap[b[3] as usize]]);
             vertex.push(vmap[self.vertex[i] as usize]);
             marks.push(self.marks[i]);
         }
@@ -67,9 +62,6 @@ impl CMap3 {
             }
             self.labels = Some(l);
         }
-        Compaction {
-            darts: dmap,
-            vertices: vmap,
-        }
+        Compaction { darts: dmap, vertices: vmap }
     }
 }

@@ -12,30 +12,12 @@ pub mod faces {
     /// VTK tetrahedron (type 10): 0-1-2 has its normal toward 3.
     pub const TET: &[&[usize]] = &[&[0, 1, 2], &[1, 0, 3], &[2, 1, 3], &[0, 2, 3]];
     /// VTK pyramid (type 14): base 0-1-2-3 has its normal toward apex 4.
-    pub const PYRAMID: &[&[usize]] = &[
-        &[0, 1, 2, 3],
-        &[1, 0, 4],
-        &[2, 1, 4],
-        &[3, 2, 4],
-        &[0, 3, 4],
-    ];
+    pub const PYRAMID: &[&[usize]] = &[&[0, 1, 2, 3], &[1, 0, 4], &[2, 1, 4], &[3, 2, 4], &[0, 3, 4]];
     /// VTK wedge (type 13): 0-1-2 has its normal pointing *away* from 3-4-5.
-    pub const PRISM: &[&[usize]] = &[
-        &[0, 2, 1],
-        &[3, 4, 5],
-        &[0, 1, 4, 3],
-        &[1, 2, 5, 4],
-        &[2, 0, 3, 5],
-    ];
+    pub const PRISM: &[&[usize]] = &[&[0, 2, 1], &[3, 4, 5], &[0, 1, 4, 3], &[1, 2, 5, 4], &[2, 0, 3, 5]];
     /// VTK hexahedron (type 12): base 0-1-2-3 has its normal toward 4-5-6-7.
-    pub const HEX: &[&[usize]] = &[
-        &[0, 1, 2, 3],
-        &[1, 0, 4, 5],
-        &[2, 1, 5, 6],
-        &[3, 2, 6, 7],
-        &[0, 3, 7, 4],
-        &[7, 6, 5, 4],
-    ];
+    pub const HEX: &[&[usize]] =
+        &[&[0, 1, 2, 3], &[1, 0, 4, 5], &[2, 1, 5, 6], &[3, 2, 6, 7], &[0, 3, 7, 4], &[7, 6, 5, 4]];
 }
 
 impl CMap3 {
@@ -94,10 +76,7 @@ impl CMap3 {
     ///
     /// # Errors
     /// As [`make_polyhedron`](Self::make_polyhedron).
-    pub fn make_polyhedron_faces<F: AsRef<[u32]>>(
-        &mut self,
-        faces: &[F],
-    ) -> Result<Vec<Dart>, MapError> {
+    pub fn make_polyhedron_faces<F: AsRef<[u32]>>(&mut self, faces: &[F]) -> Result<Vec<Dart>, MapError> {
         if faces.is_empty() {
             return Err(MapError::FaceTooSmall { min: 3, got: 0 });
         }
@@ -105,20 +84,14 @@ impl CMap3 {
         for f in faces {
             let f = f.as_ref();
             if f.len() < 3 {
-                return Err(MapError::FaceTooSmall {
-                    min: 3,
-                    got: f.len(),
-                });
+                return Err(MapError::FaceTooSmall { min: 3, got: f.len() });
             }
             for k in 0..f.len() {
                 edges.push((f[k], f[(k + 1) % f.len()], edges.len()));
             }
         }
         // Pair u→v with v→u: sort by the undirected key, then check each group is one pair.
-        let mut keyed: Vec<(u32, u32, usize)> = edges
-            .iter()
-            .map(|&(u, v, i)| (u.min(v), u.max(v), i))
-            .collect();
+        let mut keyed: Vec<(u32, u32, usize)> = edges.iter().map(|&(u, v, i)| (u.min(v), u.max(v), i)).collect();
         keyed.sort_unstable();
         let mut pairs = Vec::with_capacity(edges.len() / 2);
         let mut k = 0;
@@ -157,12 +130,8 @@ impl CMap3 {
     }
 
     fn make_standard(&mut self, table: &[&[usize]], nodes: &[u32]) -> Dart {
-        let faces: Vec<Vec<u32>> = table
-            .iter()
-            .map(|f| f.iter().map(|&k| nodes[k]).collect())
-            .collect();
-        self.make_polyhedron(&faces)
-            .expect("standard cell tables are closed and manifold")
+        let faces: Vec<Vec<u32>> = table.iter().map(|f| f.iter().map(|&k| nodes[k]).collect()).collect();
+        self.make_polyhedron(&faces).expect("standard cell tables are closed and manifold")
     }
 
     /// A tetrahedron on vertex ids in VTK order (12 darts). Returns the dart 0→1.

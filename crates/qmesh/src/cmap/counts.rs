@@ -17,17 +17,8 @@ pub struct CellCounts {
 impl CellCounts {
     /// V − E + F − C for volume maps, V − E + F for surface maps.
     pub fn euler_characteristic(&self, dimension: u8) -> i64 {
-        let (v, e, f, c) = (
-            self.vertices as i64,
-            self.edges as i64,
-            self.faces as i64,
-            self.volumes as i64,
-        );
-        if dimension == 3 {
-            v - e + f - c
-        } else {
-            v - e + f
-        }
+        let (v, e, f, c) = (self.vertices as i64, self.edges as i64, self.faces as i64, self.volumes as i64);
+        if dimension == 3 { v - e + f - c } else { v - e + f }
     }
 }
 
@@ -61,9 +52,7 @@ impl CMap3 {
 
     /// Faces lying on the boundary of a volume map (3-free faces).
     pub fn boundary_faces(&self) -> usize {
-        self.cells(Orbit::HalfFace)
-            .filter(|&d| self.is_free(d, 3))
-            .count()
+        self.cells(Orbit::HalfFace).filter(|&d| self.is_free(d, 3)).count()
     }
 
     /// Boundary edges of a surface map (2-free darts).

@@ -8,19 +8,12 @@ pub enum MapError {
     #[error("dart {0} is not a live dart of this map")]
     DeadDart(Dart),
     #[error("cannot {i}-sew darts {d1} and {d2}: {why}")]
-    NotSewable {
-        i: usize,
-        d1: Dart,
-        d2: Dart,
-        why: &'static str,
-    },
+    NotSewable { i: usize, d1: Dart, d2: Dart, why: &'static str },
     #[error("dart {0} is {1}-free: nothing to unsew")]
     AlreadyFree(Dart, usize),
     #[error("face of dart {0} lies on the boundary (3-free): there is no second volume to merge")]
     FaceOnBoundary(Dart),
-    #[error(
-        "face of dart {0} is folded onto itself (an edge of it is 2-sewn within the removed face)"
-    )]
+    #[error("face of dart {0} is folded onto itself (an edge of it is 2-sewn within the removed face)")]
     DegenerateFace(Dart),
     #[error("all 31 user marks are reserved")]
     NoMarkLeft,

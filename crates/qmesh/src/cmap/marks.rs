@@ -58,10 +58,7 @@ impl CMap3 {
     /// Clears mark `m` on every dart.
     pub fn clear_mark(&mut self, m: Mark) {
         let keep = !m.bit();
-        self.marks
-            .iter_mut()
-            .skip(1)
-            .for_each(|w| *w &= keep | DELETED_BIT);
+        self.marks.iter_mut().skip(1).for_each(|w| *w &= keep | DELETED_BIT);
     }
 
     /// All user mark bits of d (bit k = mark k).

@@ -144,9 +144,7 @@ impl OrbitWalker {
         self.seen.clear();
         self.out.clear();
         let out = &mut self.out;
-        walk_orbit(map, start, orbit, &mut self.seen, &mut self.stack, |d| {
-            out.push(d)
-        });
+        walk_orbit(map, start, orbit, &mut self.seen, &mut self.stack, |d| out.push(d));
         &self.out
     }
 
@@ -181,14 +179,7 @@ impl Iterator for Cells<'_> {
             if !self.map.is_live(d) || self.seen.get(i as usize) {
                 continue;
             }
-            walk_orbit(
-                self.map,
-                d,
-                self.orbit,
-                &mut self.seen,
-                &mut self.stack,
-                |_| {},
-            );
+            walk_orbit(self.map, d, self.orbit, &mut self.seen, &mut self.stack, |_| {});
             return Some(d);
         }
         None
@@ -209,13 +200,7 @@ impl CMap3 {
     /// assert!(m.is_valid().is_empty());
     /// ```
     pub fn cells(&self, orbit: Orbit) -> Cells<'_> {
-        Cells {
-            map: self,
-            orbit,
-            seen: BitSet::with_len(self.dart_capacity()),
-            stack: Vec::new(),
-            next: 1,
-        }
+        Cells { map: self, orbit, seen: BitSet::with_len(self.dart_capacity()), stack: Vec::new(), next: 1 }
     }
 
     /// The darts of the orbit of `d` (allocates; loops should reuse an [`OrbitWalker`]).
@@ -225,10 +210,7 @@ impl CMap3 {
     }
 
     /// Runs `f` with the map's scratch walker (for `&mut self` operations).
-    pub(crate) fn with_scratch<R>(
-        &mut self,
-        f: impl FnOnce(&mut Self, &mut OrbitWalker) -> R,
-    ) -> R {
+    pub(crate) fn with_scratch<R>(&mut self, f: impl FnOnce(&mut Self, &mut OrbitWalker) -> R) -> R {
         let mut w = std::mem::take(&mut self.scratch);
         let r = f(self, &mut w);
         self.scratch = w;

@@ -41,15 +41,8 @@ impl CMap3 {
                 _ => return Err(MapError::DegenerateFace(d)),
             }
         }
-        let links: Vec<(Dart, Dart)> = side
-            .iter()
-            .map(|&x| {
-                (
-                    self.beta(x, 2).unwrap(),
-                    self.beta(self.beta(x, 3).unwrap(), 2).unwrap(),
-                )
-            })
-            .collect();
+        let links: Vec<(Dart, Dart)> =
+            side.iter().map(|&x| (self.beta(x, 2).unwrap(), self.beta(self.beta(x, 3).unwrap(), 2).unwrap())).collect();
         for &x in &both {
             self.delete_dart(x);
         }

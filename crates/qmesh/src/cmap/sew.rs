@@ -68,12 +68,7 @@ impl CMap3 {
             (None, None) => {}
             (Some(e1), Some(e2)) if self.is_free(e2, 1) && self.is_free(e1, 0) => {}
             _ => {
-                return Err(Self::not_sewable(
-                    1,
-                    d1,
-                    d2,
-                    "their β3 images cannot be 1-sewn in turn",
-                ));
+                return Err(Self::not_sewable(1, d1, d2, "their β3 images cannot be 1-sewn in turn"));
             }
         }
         self.link(d1, 1, d2);
@@ -93,12 +88,7 @@ impl CMap3 {
         self.err_if_dead(d1)?;
         self.err_if_dead(d2)?;
         if d1 == d2 || !self.is_free(d1, 2) || !self.is_free(d2, 2) {
-            return Err(Self::not_sewable(
-                2,
-                d1,
-                d2,
-                "both darts must be distinct and 2-free",
-            ));
+            return Err(Self::not_sewable(2, d1, d2, "both darts must be distinct and 2-free"));
         }
         self.link(d1, 2, d2);
         self.harmonize_vertex(d1);
@@ -128,12 +118,7 @@ impl CMap3 {
         self.err_if_dead(d1)?;
         self.err_if_dead(d2)?;
         if !self.is_sewable3(d1, d2) {
-            return Err(Self::not_sewable(
-                3,
-                d1,
-                d2,
-                "faces must be distinct, 3-free and of equal length",
-            ));
+            return Err(Self::not_sewable(3, d1, d2, "faces must be distinct, 3-free and of equal length"));
         }
         let (mut x, mut y) = (d1, d2);
         loop {
@@ -198,10 +183,7 @@ impl CMap3 {
         self.err_if_dead(d)?;
         let o = self.beta(d, 2).ok_or(MapError::AlreadyFree(d, 2))?;
         self.unlink(d, 2);
-        let touched: Vec<Dart> = [Some(d), Some(o), self.beta(d, 1), self.beta(o, 1)]
-            .into_iter()
-            .flatten()
-            .collect();
+        let touched: Vec<Dart> = [Some(d), Some(o), self.beta(d, 1), self.beta(o, 1)].into_iter().flatten().collect();
         self.split_vertex_ids(&touched);
         Ok(())
     }

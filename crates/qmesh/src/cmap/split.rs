@@ -25,17 +25,9 @@ impl CMap3 {
         let v = self.add_vertex(p);
         let edge: Vec<Dart> = self.with_scratch(|m, w| w.collect(m, d, Orbit::Edge).to_vec());
         let new: Vec<Dart> = edge.iter().map(|_| self.create_dart(v)).collect();
-        let new_of = |x: Dart| {
-            new[edge
-                .iter()
-                .position(|&e| e == x)
-                .expect("edge orbit is closed under β2, β3")]
-        };
+        let new_of = |x: Dart| new[edge.iter().position(|&e| e == x).expect("edge orbit is closed under β2, β3")];
         // Read the old β2/β3 partners before rewiring anything.
-        let partners: Vec<[Option<Dart>; 2]> = edge
-            .iter()
-            .map(|&x| [self.beta(x, 2), self.beta(x, 3)])
-            .collect();
+        let partners: Vec<[Option<Dart>; 2]> = edge.iter().map(|&x| [self.beta(x, 2), self.beta(x, 3)]).collect();
         for (k, &x) in edge.iter().enumerate() {
             let n = new[k];
             self.set_label_of(n, self.label_of(x));
@@ -70,11 +62,7 @@ impl CMap3 {
         let mut out = Vec::with_capacity(k - 1);
         for i in 1..k {
             let t = i as f64 / k as f64;
-            let p = [
-                a[0] + (b[0] - a[0]) * t,
-                a[1] + (b[1] - a[1]) * t,
-                a[2] + (b[2] - a[2]) * t,
-            ];
+            let p = [a[0] + (b[0] - a[0]) * t, a[1] + (b[1] - a[1]) * t, a[2] + (b[2] - a[2]) * t];
             cur = self.insert_vertex_in_edge(cur, p);
             out.push(cur);
         }

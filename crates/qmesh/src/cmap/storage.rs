@@ -100,9 +100,7 @@ impl CMap3 {
     /// Whether raw index `d` is a live dart of this map.
     #[inline]
     pub fn is_live(&self, d: Dart) -> bool {
-        self.marks
-            .get(d.idx())
-            .is_some_and(|m| m & DELETED_BIT == 0)
+        self.marks.get(d.idx()).is_some_and(|m| m & DELETED_BIT == 0)
     }
 
     /// All live darts in increasing index order.
@@ -140,15 +138,13 @@ impl CMap3 {
     /// [`unlink`](Self::unlink).
     #[inline]
     pub fn next(&self, d: Dart) -> Dart {
-        self.beta(d, 1)
-            .expect("β1 is free: the map is being rewired")
+        self.beta(d, 1).expect("β1 is free: the map is being rewired")
     }
 
     /// β0(d): the previous dart around d's face. # Panics as [`next`](Self::next).
     #[inline]
     pub fn prev(&self, d: Dart) -> Dart {
-        self.beta(d, 0)
-            .expect("β0 is free: the map is being rewired")
+        self.beta(d, 0).expect("β0 is free: the map is being rewired")
     }
 
     /// Low-level link, no checks: for i = 1, β1(d1) = d2 and β0(d2) = d1; for i = 0 the
@@ -303,10 +299,6 @@ impl CMap3 {
     pub const BYTES_PER_DART: usize = 16 + 4 + 4;
 
     pub(super) fn err_if_dead(&self, d: Dart) -> Result<(), MapError> {
-        if self.is_live(d) {
-            Ok(())
-        } else {
-            Err(MapError::DeadDart(d))
-        }
+        if self.is_live(d) { Ok(()) } else { Err(MapError::DeadDart(d)) }
     }
 }

@@ -39,10 +39,7 @@ impl fmt::Display for Violation {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         use Violation::*;
         match *self {
-            Dangling { dart, i, target } => write!(
-                f,
-                "dart {dart}: β{i} points to {target}, which is not a live dart"
-            ),
+            Dangling { dart, i, target } => write!(f, "dart {dart}: β{i} points to {target}, which is not a live dart"),
             Beta1Free { dart } => write!(f, "dart {dart}: β1 or β0 is free (open face)"),
             Beta2Free { dart } => {
                 write!(f, "dart {dart}: β2 is free in a volume map (open volume)")
@@ -52,19 +49,13 @@ impl fmt::Display for Violation {
             FixedPoint { dart, i } => write!(f, "dart {dart}: β{i}(d) = d"),
             Beta13NotInvolution { dart } => write!(f, "dart {dart}: β1∘β3 is not an involution"),
             VertexIdMismatch { dart, other } => {
-                write!(
-                    f,
-                    "darts {dart} and {other} share a vertex but have different vertex ids"
-                )
+                write!(f, "darts {dart} and {other} share a vertex but have different vertex ids")
             }
             VertexIdOutOfRange { dart, id } => {
                 write!(f, "dart {dart}: vertex id {id} has no position")
             }
             VertexIdShared { id, dart, other } => {
-                write!(
-                    f,
-                    "vertex id {id} is used by two distinct vertices (darts {dart} and {other})"
-                )
+                write!(f, "vertex id {id} is used by two distinct vertices (darts {dart} and {other})")
             }
             Beta3InSurface { dart } => write!(f, "dart {dart}: β3 is sewn in a surface map"),
         }
@@ -86,11 +77,7 @@ impl CMap3 {
             let mut dangling = false;
             for (i, &t) in b.iter().enumerate() {
                 if t != 0 && !live(t) {
-                    out.push(Violation::Dangling {
-                        dart: r,
-                        i,
-                        target: t,
-                    });
+                    out.push(Violation::Dangling { dart: r, i, target: t });
                     dangling = true;
                 }
             }
@@ -137,10 +124,7 @@ impl CMap3 {
                 let target = self.vertex[b[1] as usize];
                 for i in [2, 3] {
                     if b[i] != 0 && self.vertex[b[i] as usize] != target {
-                        out.push(Violation::VertexIdMismatch {
-                            dart: b[i],
-                            other: b[1],
-                        });
+                        out.push(Violation::VertexIdMismatch { dart: b[i], other: b[1] });
                     }
                 }
             }
@@ -150,11 +134,7 @@ impl CMap3 {
             for d in self.cells(Orbit::Vertex) {
                 let id = self.vertex_of(d);
                 if let Some(&other) = owner.get(&id) {
-                    out.push(Violation::VertexIdShared {
-                        id,
-                        dart: d.raw(),
-                        other,
-                    });
+                    out.push(Violation::VertexIdShared { id, dart: d.raw(), other });
                 } else {
                     owner.insert(id, d.raw());
                 }

@@ -13,11 +13,7 @@ pub fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
 /// a × b.
 #[inline]
 pub fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
+    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
 }
 
 /// a · b.
@@ -33,9 +29,5 @@ pub fn centroid(points: impl IntoIterator<Item = [f64; 3]>) -> [f64; 3] {
         s = [s[0] + p[0], s[1] + p[1], s[2] + p[2]];
         n += 1.0;
     }
-    if n == 0.0 {
-        s
-    } else {
-        [s[0] / n, s[1] / n, s[2] / n]
-    }
+    if n == 0.0 { s } else { [s[0] / n, s[1] / n, s[2] / n] }
 }

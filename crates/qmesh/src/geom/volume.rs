@@ -7,9 +7,7 @@ use crate::cmap::{CMap3, Dart, Orbit, OrbitWalker};
 /// (the map's orientation convention): positive for a correctly oriented cell.
 /// Non-planar faces are fan-triangulated around their centroid.
 pub fn signed_volume_of_faces<F: AsRef<[u32]>>(faces: &[F], points: &[[f64; 3]]) -> f64 {
-    let all = faces
-        .iter()
-        .flat_map(|f| f.as_ref().iter().map(|&v| points[v as usize]));
+    let all = faces.iter().flat_map(|f| f.as_ref().iter().map(|&v| points[v as usize]));
     let o = centroid(all);
     let mut six_v = 0.0;
     for f in faces {

@@ -8,27 +8,19 @@ use super::error::{IoError, IoResult};
 
 /// The temporary path used while `dest` is being written.
 pub fn temp_path(dest: &Path) -> PathBuf {
-    let name = dest
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_else(|| "out".into());
+    let name = dest.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_else(|| "out".into());
     dest.with_file_name(format!(".{name}.qmesh-tmp-{}", std::process::id()))
 }
 
 /// Runs `body` on a buffered writer to a temporary file, then renames it onto `dest`.
 /// On any error the temporary file is removed and `dest` is left untouched.
-pub fn write_atomically(
-    dest: &Path,
-    body: impl FnOnce(&mut dyn Write) -> IoResult<()>,
-) -> IoResult<()> {
+pub fn write_atomically(dest: &Path, body: impl FnOnce(&mut dyn Write) -> IoResult<()>) -> IoResult<()> {
     let tmp = temp_path(dest);
     let result = (|| {
         let f = File::create(&tmp).map_err(|e| IoError::io(dest, e))?;
         let mut w = BufWriter::with_capacity(1 << 20, f);
         body(&mut w)?;
-        let f = w
-            .into_inner()
-            .map_err(|e| IoError::io(dest, e.into_error()))?;
+        let f = w.into_inner().map_err(|e| IoError::io(dest, e.into_error()))?;
         f.sync_all().map_err(|e| IoError::io(dest, e))?;
         std::fs::rename(&tmp, dest).map_err(|e| IoError::io(dest, e))
     })();

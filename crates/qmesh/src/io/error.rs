@@ -25,35 +25,22 @@ impl std::fmt::Display for Location {
 #[derive(Debug, thiserror::Error)]
 pub enum IoError {
     #[error("{path}:{at}: {msg}", path = path.display())]
-    Parse {
-        path: PathBuf,
-        at: Location,
-        msg: String,
-    },
-    #[error("{path}: {source}", path = path.display())]
-    Io {
-        path: PathBuf,
-        source: std::io::Error,
-    },
+    Parse { path: PathBuf, at: Location, msg: String },
+    #[error("{path}: {cause}", path = path.display())]
+    Io { path: PathBuf, cause: std::io::Error },
     #[error("{path}: {msg}", path = path.display())]
     Unsupported { path: PathBuf, msg: String },
-    #[error("{path}: {source}", path = path.display())]
-    Build { path: PathBuf, source: BuildError },
+    #[error("{path}: {cause}", path = path.display())]
+    Build { path: PathBuf, cause: BuildError },
 }
 
 impl IoError {
-    pub fn io(path: &std::path::Path, source: std::io::Error) -> Self {
-        IoError::Io {
-            path: path.to_path_buf(),
-            source,
-        }
+    pub fn io(path: &std::path::Path, cause: std::io::Error) -> Self {
+        IoError::Io { path: path.to_path_buf(), cause }
     }
 
     pub fn unsupported(path: &std::path::Path, msg: impl Into<String>) -> Self {
-        IoError::Unsupported {
-            path: path.to_path_buf(),
-            msg: msg.into(),
-        }
+        IoError::Unsupported { path: path.to_path_buf(), msg: msg.into() }
     }
 }
 

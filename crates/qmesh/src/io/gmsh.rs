@@ -42,10 +42,7 @@ struct NodeTags {
 
 impl NodeTags {
     fn get(&self, lx: &Lexer<'_>, tag: i64) -> IoResult<u32> {
-        self.map
-            .get(&tag)
-            .copied()
-            .ok_or_else(|| lx.err(format!("node tag {tag} is not defined in $Nodes")))
+        self.map.get(&tag).copied().ok_or_else(|| lx.err(format!("node tag {tag} is not defined in $Nodes")))
     }
 }
 
@@ -77,10 +74,7 @@ pub fn read(path: &Path, data: &[u8]) -> IoResult<IndexedMesh> {
     let file_type: i64 = lx.parse("the file type (0 = ASCII)")?;
     let _dsize: i64 = lx.parse("the data size")?;
     if file_type != 0 {
-        return Err(IoError::unsupported(
-            path,
-            "binary .msh files are not supported yet; save as ASCII",
-        ));
+        return Err(IoError::unsupported(path, "binary .msh files are not supported yet; save as ASCII"));
     }
     let v4 = match version {
         "2.2" | "2.1" | "2" | "2.0" => false,
@@ -88,18 +82,13 @@ pub fn read(path: &Path, data: &[u8]) -> IoResult<IndexedMesh> {
         _ => {
             return Err(IoError::unsupported(
                 path,
-                format!(
-                    "MSH version {} is not supported (2.2 or 4.1)",
-                    clip(version)
-                ),
+                format!("MSH version {} is not supported (2.2 or 4.1)", clip(version)),
             ));
         }
     };
     lx.expect_word("$EndMeshFormat")?;
     let mut mesh = IndexedMesh::new();
-    let mut tags = NodeTags {
-        map: FxHashMap::default(),
-    };
+    let mut tags = NodeTags { map: FxHashMap::default() };
     let mut els = Elements::default();
     while let Some(section) = lx.token() {
         match section {
@@ -119,10 +108,7 @@ pub fn read(path: &Path, data: &[u8]) -> IoResult<IndexedMesh> {
                 }
             }
             other => {
-                return Err(lx.err(format!(
-                    "expected a section such as $Nodes, found '{}'",
-                    clip(other)
-                )));
+                return Err(lx.err(format!("expected a section such as $Nodes, found '{}'", clip(other))));
             }
         }
     }
@@ -135,14 +121,10 @@ pub fn read(path: &Path, data: &[u8]) -> IoResult<IndexedMesh> {
         els.lower += els.surface.len();
     }
     if els.lower > 0 {
-        mesh.warnings
-            .push(format!("skipped {} lower-dimensional elements", els.lower));
+        mesh.warnings.push(format!("skipped {} lower-dimensional elements", els.lower));
     }
     if els.unsupported > 0 {
-        mesh.warnings.push(format!(
-            "skipped {} elements of unsupported (high-order) types",
-            els.unsupported
-        ));
+        mesh.warnings.push(format!("skipped {} elements of unsupported (high-order) types", els.unsupported));
     }
     Ok(mesh)
 }
@@ -173,10 +155,7 @@ fn nodes_v4(lx: &mut Lexer<'_>, mesh: &mut IndexedMesh, tags: &mut NodeTags) -> 
         let parametric: i64 = lx.parse("the parametric flag")?;
         let n = lx.count("nodes in the block", 8)?;
         if parametric != 0 {
-            return Err(IoError::unsupported(
-                lx.path(),
-                "parametric nodes are not supported",
-            ));
+            return Err(IoError::unsupported(lx.path(), "parametric nodes are not supported"));
         }
         let first = mesh.points.len() as u32;
         let mut block_tags = Vec::with_capacity(n);
@@ -191,10 +170,7 @@ fn nodes_v4(lx: &mut Lexer<'_>, mesh: &mut IndexedMesh, tags: &mut NodeTags) -> 
         }
     }
     if mesh.points.len() != total {
-        return Err(lx.err(format!(
-            "$Nodes declares {total} nodes but its blocks hold {}",
-            mesh.points.len()
-        )));
+        return Err(lx.err(format!("$Nodes declares {total} nodes but its blocks hold {}", mesh.points.len())));
     }
     lx.expect_word("$EndNodes")
 }
@@ -209,11 +185,8 @@ fn elements_v2(lx: &mut Lexer<'_>, tags: &NodeTags, els: &mut Elements) -> IoRes
         for _ in 0..ntags {
             etags.push(lx.parse::<i64>("an element tag value")?);
         }
-        let (k, ..) = element(t).ok_or_else(|| {
-            lx.err(format!(
-                "element type {t} is not supported (linear types 1-7, 15)"
-            ))
-        })?;
+        let (k, ..) =
+            element(t).ok_or_else(|| lx.err(format!("element type {t} is not supported (linear types 1-7, 15)")))?;
         let nodes = node_list(lx, tags, k)?;
         let label = etags.get(1).or(etags.first()).copied().unwrap_or(0) as i32;
         els.push(t, nodes, label);
@@ -240,11 +213,8 @@ fn elements_v4(lx: &mut Lexer<'_>, tags: &NodeTags, els: &mut Elements) -> IoRes
         let entity: i64 = lx.parse("an entity tag")?;
         let t: i64 = lx.parse("an element type")?;
         let n = lx.count("elements in the block", 4)?;
-        let (k, ..) = element(t).ok_or_else(|| {
-            lx.err(format!(
-                "element type {t} is not supported (linear types 1-7, 15)"
-            ))
-        })?;
+        let (k, ..) =
+            element(t).ok_or_else(|| lx.err(format!("element type {t} is not supported (linear types 1-7, 15)")))?;
         for _ in 0..n {
             let _id: i64 = lx.parse("an element tag")?;
             let nodes = node_list(lx, tags, k)?;
@@ -271,9 +241,8 @@ pub fn write(path: &Path, mesh: &IndexedMesh, w: &mut dyn Write) -> IoResult<()>
     let mut members: Vec<(usize, &[u32])> = Vec::new();
     for i in 0..mesh.nb_cells() {
         let (k, nodes) = mesh.cell(i);
-        let t = gmsh_type(k).ok_or_else(|| {
-            IoError::unsupported(path, "gmsh .msh has no polyhedron cells; write VTK instead")
-        })?;
+        let t = gmsh_type(k)
+            .ok_or_else(|| IoError::unsupported(path, "gmsh .msh has no polyhedron cells; write VTK instead"))?;
         members.push((add((3, mesh.label(i).unwrap_or(1).max(1), t)), nodes));
     }
     for i in 0..mesh.nb_polygons() {
@@ -282,10 +251,7 @@ pub fn write(path: &Path, mesh: &IndexedMesh, w: &mut dyn Write) -> IoResult<()>
             3 => 2,
             4 => 3,
             n => {
-                return Err(IoError::unsupported(
-                    path,
-                    format!("gmsh .msh stores triangles and quads, not {n}-gons"),
-                ));
+                return Err(IoError::unsupported(path, format!("gmsh .msh stores triangles and quads, not {n}-gons")));
             }
         };
         members.push((add((2, 1, t)), p));
@@ -297,13 +263,7 @@ pub fn write(path: &Path, mesh: &IndexedMesh, w: &mut dyn Write) -> IoResult<()>
     entities.sort_unstable();
     entities.dedup();
     let count = |d: u8| entities.iter().filter(|e| e.0 == d).count();
-    writeln!(
-        w,
-        "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Entities\n0 0 {} {}",
-        count(2),
-        count(3)
-    )
-    .map_err(io)?;
+    writeln!(w, "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Entities\n0 0 {} {}", count(2), count(3)).map_err(io)?;
     for &(_, e) in &entities {
         // tag, bounding box (unused), no physical tags, no bounding entities
         writeln!(w, "{e} 0 0 0 0 0 0 0 0").map_err(io)?;
@@ -319,12 +279,7 @@ pub fn write(path: &Path, mesh: &IndexedMesh, w: &mut dyn Write) -> IoResult<()>
         writeln!(w, "{} {} {}", p[0], p[1], p[2]).map_err(io)?;
     }
     let total: usize = blocks.iter().map(|b| b.1.len()).sum();
-    writeln!(
-        w,
-        "$EndNodes\n$Elements\n{} {total} 1 {total}",
-        blocks.len()
-    )
-    .map_err(io)?;
+    writeln!(w, "$EndNodes\n$Elements\n{} {total} 1 {total}", blocks.len()).map_err(io)?;
     let mut tag = 1usize;
     for ((d, e, t), cells) in &blocks {
         writeln!(w, "{d} {e} {t} {}", cells.len()).map_err(io)?;

@@ -20,14 +20,7 @@ pub struct Lexer<'a> {
 impl<'a> Lexer<'a> {
     /// A lexer over `data`; `comment` starts a comment running to the end of the line.
     pub fn new(path: &'a Path, data: &'a [u8], comment: Option<u8>) -> Self {
-        Lexer {
-            data,
-            pos: 0,
-            line: 1,
-            tok_line: 1,
-            path,
-            comment,
-        }
+        Lexer { data, pos: 0, line: 1, tok_line: 1, path, comment }
     }
 
     pub fn path(&self) -> &'a Path {
@@ -36,20 +29,12 @@ impl<'a> Lexer<'a> {
 
     /// Error at the line of the last token read.
     pub fn err(&self, msg: impl Into<String>) -> IoError {
-        IoError::Parse {
-            path: self.path.to_path_buf(),
-            at: Location::Line(self.tok_line),
-            msg: msg.into(),
-        }
+        IoError::Parse { path: self.path.to_path_buf(), at: Location::Line(self.tok_line), msg: msg.into() }
     }
 
     /// Error at a byte offset (binary data).
     pub fn err_at_byte(&self, msg: impl Into<String>) -> IoError {
-        IoError::Parse {
-            path: self.path.to_path_buf(),
-            at: Location::Byte(self.pos),
-            msg: msg.into(),
-        }
+        IoError::Parse { path: self.path.to_path_buf(), at: Location::Byte(self.pos), msg: msg.into() }
     }
 
     pub fn remaining(&self) -> usize {
@@ -112,37 +97,24 @@ impl<'a> Lexer<'a> {
     /// The next token, which must equal `word` (ASCII case-insensitive).
     pub fn expect_word(&mut self, word: &str) -> Result<(), IoError> {
         let t = self.expect(&format!("'{word}'"))?;
-        if t.eq_ignore_ascii_case(word) {
-            Ok(())
-        } else {
-            Err(self.err(format!("expected '{word}', found '{t}'")))
-        }
+        if t.eq_ignore_ascii_case(word) { Ok(()) } else { Err(self.err(format!("expected '{word}', found '{t}'"))) }
     }
 
     /// The next token parsed as `T`.
     pub fn parse<T: FromStr>(&mut self, what: &str) -> Result<T, IoError> {
         let t = self.expect(what)?;
-        t.parse::<T>()
-            .map_err(|_| self.err(format!("expected {what}, found '{}'", clip(t))))
+        t.parse::<T>().map_err(|_| self.err(format!("expected {what}, found '{}'", clip(t))))
     }
 
     /// A finite floating-point number.
     pub fn f64(&mut self, what: &str) -> Result<f64, IoError> {
         let x: f64 = self.parse(what)?;
-        if x.is_finite() {
-            Ok(x)
-        } else {
-            Err(self.err(format!("expected {what} (a finite number), found {x}")))
-        }
+        if x.is_finite() { Ok(x) } else { Err(self.err(format!("expected {what} (a finite number), found {x}"))) }
     }
 
     /// A point: three finite coordinates.
     pub fn point(&mut self) -> Result<[f64; 3], IoError> {
-        Ok([
-            self.f64("an x coordinate")?,
-            self.f64("a y coordinate")?,
-            self.f64("a z coordinate")?,
-        ])
+        Ok([self.f64("an x coordinate")?, self.f64("a y coordinate")?, self.f64("a z coordinate")?])
     }
 
     /// A declared item count, refused when `count` items of at least `min_bytes` each
@@ -155,9 +127,7 @@ impl<'a> Lexer<'a> {
     /// See [`count`](Self::count), for a count already parsed.
     pub fn check_count(&self, n: i64, what: &str, min_bytes: usize) -> Result<usize, IoError> {
         if n < 0 {
-            return Err(self.err(format!(
-                "expected a non-negative number of {what}, found {n}"
-            )));
+            return Err(self.err(format!("expected a non-negative number of {what}, found {n}")));
         }
         let need = (n as u128) * (min_bytes as u128);
         if need > self.remaining() as u128 {
@@ -205,10 +175,7 @@ impl<'a> Lexer<'a> {
     /// `n` raw bytes (binary blocks).
     pub fn bytes(&mut self, n: usize, what: &str) -> Result<&'a [u8], IoError> {
         if n > self.remaining() {
-            return Err(self.err_at_byte(format!(
-                "expected {n} bytes of {what}, but only {} remain",
-                self.remaining()
-            )));
+            return Err(self.err_at_byte(format!("expected {n} bytes of {what}, but only {} remain", self.remaining())));
         }
         let b = &self.data[self.pos..self.pos + n];
         self.line += b.iter().filter(|&&c| c == b'\n').count();
@@ -219,9 +186,5 @@ impl<'a> Lexer<'a> {
 
 /// A token shortened for error messages.
 pub fn clip(t: &str) -> String {
-    if t.chars().count() > 40 {
-        format!("{}…", t.chars().take(40).collect::<String>())
-    } else {
-        t.to_string()
-    }
+    if t.chars().count() > 40 { format!("{}…", t.chars().take(40).collect::<String>()) } else { t.to_string() }
 }

@@ -48,11 +48,7 @@ pub fn read(path: &Path, data: &[u8]) -> IoResult<IndexedMesh> {
                 for _ in 0..n {
                     let x = lx.f64("an x coordinate")?;
                     let y = lx.f64("a y coordinate")?;
-                    let z = if dim == 3 {
-                        lx.f64("a z coordinate")?
-                    } else {
-                        0.0
-                    };
+                    let z = if dim == 3 { lx.f64("a z coordinate")? } else { 0.0 };
                     lx.parse::<i64>("a vertex reference (integer)")?;
                     mesh.points.push([x, y, z]);
                 }
@@ -68,9 +64,8 @@ pub fn read(path: &Path, data: &[u8]) -> IoResult<IndexedMesh> {
                             *slot = lx.index(1, np, "vertex index")?;
                         }
                         let r: i64 = lx.parse("an element reference (integer)")?;
-                        let r = i32::try_from(r).map_err(|_| {
-                            lx.err(format!("reference {r} does not fit in 32 bits"))
-                        })?;
+                        let r =
+                            i32::try_from(r).map_err(|_| lx.err(format!("reference {r} does not fit in 32 bits")))?;
                         match kind {
                             Some(kind) => mesh.push_cell(kind, &nodes, Some(r)),
                             None => polygons.push((nodes.clone(), r)),
@@ -80,15 +75,9 @@ pub fn read(path: &Path, data: &[u8]) -> IoResult<IndexedMesh> {
                     // Other sections (Edges, Corners, Ridges, Normals…): skip their numbers.
                     skipped_section(&mut lx, &mut skipped);
                 } else if !saw_header {
-                    return Err(lx.err(format!(
-                        "expected 'MeshVersionFormatted', found '{}'",
-                        super::lexer::clip(kw)
-                    )));
+                    return Err(lx.err(format!("expected 'MeshVersionFormatted', found '{}'", super::lexer::clip(kw))));
                 } else {
-                    return Err(lx.err(format!(
-                        "expected a keyword, found '{}'",
-                        super::lexer::clip(kw)
-                    )));
+                    return Err(lx.err(format!("expected a keyword, found '{}'", super::lexer::clip(kw))));
                 }
             }
         }
@@ -98,10 +87,7 @@ pub fn read(path: &Path, data: &[u8]) -> IoResult<IndexedMesh> {
     }
     if mesh.is_volume() {
         if !polygons.is_empty() {
-            mesh.warnings.push(format!(
-                "skipped {} boundary triangles/quadrilaterals (volume mesh)",
-                polygons.len()
-            ));
+            mesh.warnings.push(format!("skipped {} boundary triangles/quadrilaterals (volume mesh)", polygons.len()));
         }
     } else {
         for (p, _) in &polygons {
@@ -109,8 +95,7 @@ pub fn read(path: &Path, data: &[u8]) -> IoResult<IndexedMesh> {
         }
     }
     if skipped > 0 {
-        mesh.warnings
-            .push(format!("skipped {skipped} other Medit sections"));
+        mesh.warnings.push(format!("skipped {skipped} other Medit sections"));
     }
     Ok(mesh)
 }
@@ -130,11 +115,7 @@ fn skipped_section(lx: &mut Lexer<'_>, skipped: &mut usize) {
 /// # Errors
 /// Polyhedra cannot be stored in Medit files.
 pub fn write(path: &Path, mesh: &IndexedMesh, w: &mut dyn Write) -> IoResult<()> {
-    let poly = mesh
-        .kinds
-        .iter()
-        .filter(|k| **k == CellKind::Polyhedron)
-        .count();
+    let poly = mesh.kinds.iter().filter(|k| **k == CellKind::Polyhedron).count();
     if poly > 0 {
         return Err(IoError::unsupported(
             path,
@@ -142,21 +123,14 @@ pub fn write(path: &Path, mesh: &IndexedMesh, w: &mut dyn Write) -> IoResult<()>
         ));
     }
     let io = |e| IoError::io(path, e);
-    writeln!(
-        w,
-        "MeshVersionFormatted 2\n\nDimension 3\n\nVertices\n{}",
-        mesh.points.len()
-    )
-    .map_err(io)?;
+    writeln!(w, "MeshVersionFormatted 2\n\nDimension 3\n\nVertices\n{}", mesh.points.len()).map_err(io)?;
     for p in &mesh.points {
         writeln!(w, "{} {} {} 0", p[0], p[1], p[2]).map_err(io)?;
     }
     for &(name, _, kind) in ELEMENTS {
         match kind {
             Some(kind) => {
-                let ids: Vec<usize> = (0..mesh.nb_cells())
-                    .filter(|&i| mesh.kinds[i] == kind)
-                    .collect();
+                let ids: Vec<usize> = (0..mesh.nb_cells()).filter(|&i| mesh.kinds[i] == kind).collect();
                 if ids.is_empty() {
                     continue;
                 }
@@ -170,9 +144,7 @@ pub fn write(path: &Path, mesh: &IndexedMesh, w: &mut dyn Write) -> IoResult<()>
             }
             None => {
                 let k = if name == "Triangles" { 3 } else { 4 };
-                let ids: Vec<usize> = (0..mesh.nb_polygons())
-                    .filter(|&i| mesh.polygon(i).len() == k)
-                    .collect();
+                let ids: Vec<usize> = (0..mesh.nb_polygons()).filter(|&i| mesh.polygon(i).len() == k).collect();
                 if ids.is_empty() {
                     continue;
                 }
@@ -186,9 +158,7 @@ pub fn write(path: &Path, mesh: &IndexedMesh, w: &mut dyn Write) -> IoResult<()>
             }
         }
     }
-    let other = (0..mesh.nb_polygons())
-        .filter(|&i| !(3..=4).contains(&mesh.polygon(i).len()))
-        .count();
+    let other = (0..mesh.nb_polygons()).filter(|&i| !(3..=4).contains(&mesh.polygon(i).len())).count();
     if other > 0 {
         return Err(IoError::unsupported(
             path,

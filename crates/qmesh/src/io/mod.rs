@@ -71,9 +71,7 @@ impl Format {
 
     /// The format of a path, from its extension.
     pub fn from_path(path: &Path) -> Option<Format> {
-        path.extension()
-            .and_then(|e| e.to_str())
-            .and_then(Format::from_name)
+        path.extension().and_then(|e| e.to_str()).and_then(Format::from_name)
     }
 
     pub fn name(self) -> &'static str {
@@ -154,20 +152,11 @@ pub fn load_map(path: &Path, forced: Option<Format>, opts: &BuildOptions) -> IoR
     let (map, report, warnings) = match loaded {
         Loaded::Map(m) => (m, BuildReport::default(), Vec::new()),
         Loaded::Indexed(mesh) => {
-            let (m, r) = build_map(&mesh, opts).map_err(|source| IoError::Build {
-                path: path.into(),
-                source,
-            })?;
+            let (m, r) = build_map(&mesh, opts).map_err(|cause| IoError::Build { path: path.into(), cause })?;
             (m, r, mesh.warnings)
         }
     };
-    Ok(LoadedMap {
-        map,
-        report,
-        warnings,
-        read_seconds,
-        build_seconds: t1.elapsed().as_secs_f64(),
-    })
+    Ok(LoadedMap { map, report, warnings, read_seconds, build_seconds: t1.elapsed().as_secs_f64() })
 }
 
 /// Options of writers.
@@ -178,12 +167,7 @@ pub struct WriteOptions {
 }
 
 /// Writes indexed cells (atomically).
-pub fn write_indexed(
-    path: &Path,
-    mesh: &IndexedMesh,
-    format: Format,
-    opts: &WriteOptions,
-) -> IoResult<()> {
+pub fn write_indexed(path: &Path, mesh: &IndexedMesh, format: Format, opts: &WriteOptions) -> IoResult<()> {
     write_atomically(path, |w| match format {
         Format::Vtk => vtk_legacy::write(path, mesh, opts.binary, w),
         Format::Vtu => vtu::write(path, mesh, w),
@@ -191,32 +175,22 @@ pub fn write_indexed(
         Format::Msh => gmsh::write(path, mesh, w),
         Format::Off => off::write(path, mesh, w),
         Format::Obj => obj::write(path, mesh, w),
-        Format::Moka | Format::Stl | Format::Ply => Err(IoError::unsupported(
-            path,
-            format!(
-                "qmesh cannot write .{} files from indexed cells",
-                format.name()
-            ),
-        )),
+        Format::Moka | Format::Stl | Format::Ply => {
+            Err(IoError::unsupported(path, format!("qmesh cannot write .{} files from indexed cells", format.name())))
+        }
     })
 }
 
 /// Writes a map (atomically): volume formats get its cells; OFF/OBJ get its boundary
 /// surface (or its faces for a surface map); `.moka` gets the map itself.
-pub fn write_map(
-    path: &Path,
-    map: &CMap3,
-    forced: Option<Format>,
-    opts: &WriteOptions,
-) -> IoResult<()> {
+pub fn write_map(path: &Path, map: &CMap3, forced: Option<Format>, opts: &WriteOptions) -> IoResult<()> {
     let format = resolve_format(path, forced)?;
     match format {
         Format::Moka => write_atomically(path, |w| moka::write(path, map, w)),
         Format::Off | Format::Obj => write_indexed(path, &boundary_polygons(map), format, opts),
-        Format::Stl | Format::Ply => Err(IoError::unsupported(
-            path,
-            format!("qmesh reads .{} but does not write it", format.name()),
-        )),
+        Format::Stl | Format::Ply => {
+            Err(IoError::unsupported(path, format!("qmesh reads .{} but does not write it", format.name())))
+        }
         _ => write_indexed(path, &extract(map).0, format, opts),
     }
 }

@@ -16,16 +16,10 @@ struct GDart {
 fn parse_gdarts(lx: &mut Lexer<'_>) -> IoResult<Vec<GDart>> {
     let first = lx.rest_of_line();
     if !first.starts_with("Moka file") {
-        return Err(lx.err(format!(
-            "expected 'Moka file [ascii]', found '{}'",
-            clip(first)
-        )));
+        return Err(lx.err(format!("expected 'Moka file [ascii]', found '{}'", clip(first))));
     }
     if first.contains("binary") {
-        return Err(IoError::unsupported(
-            lx.path(),
-            "binary Moka files are not supported",
-        ));
+        return Err(IoError::unsupported(lx.path(), "binary Moka files are not supported"));
     }
     lx.rest_of_line(); // global mark state
     let mut out = Vec::new();
@@ -38,10 +32,7 @@ fn parse_gdarts(lx: &mut Lexer<'_>) -> IoResult<Vec<GDart>> {
         for (i, a) in alpha.iter_mut().enumerate() {
             let v: i64 = lx.parse(&format!("α{i} of g-dart {}", out.len()))?;
             if v < 0 || v > u32::MAX as i64 {
-                return Err(lx.err(format!(
-                    "α{i} of g-dart {} is {v}: expected a g-dart index",
-                    out.len()
-                )));
+                return Err(lx.err(format!("α{i} of g-dart {} is {v}: expected a g-dart index", out.len())));
             }
             *a = v as u32;
         }
@@ -76,22 +67,15 @@ pub fn read(path: &Path, data: &[u8]) -> IoResult<CMap3> {
     if n == 0 {
         return Err(lx.err("expected at least one g-dart line"));
     }
-    let bad = |msg: String| IoError::Unsupported {
-        path: path.into(),
-        msg,
-    };
+    let bad = |msg: String| IoError::Unsupported { path: path.into(), msg };
     for (k, d) in g.iter().enumerate() {
         for i in 0..4 {
             let a = d.alpha[i] as usize;
             if a >= n {
-                return Err(bad(format!(
-                    "g-dart {k}: α{i} = {a} is out of range (the file has {n} g-darts)"
-                )));
+                return Err(bad(format!("g-dart {k}: α{i} = {a} is out of range (the file has {n} g-darts)")));
             }
             if g[a].alpha[i] as usize != k {
-                return Err(bad(format!(
-                    "g-dart {k}: α{i} is not an involution (α{i}(α{i}({k})) ≠ {k})"
-                )));
+                return Err(bad(format!("g-dart {k}: α{i} is not an involution (α{i}(α{i}({k})) ≠ {k})")));
             }
         }
         if d.alpha[0] as usize == k {
@@ -124,9 +108,7 @@ pub fn read(path: &Path, data: &[u8]) -> IoResult<CMap3> {
                             stack.push(e as u32);
                         }
                         2 => {
-                            return Err(bad(format!(
-                                "the generalized map is not orientable (g-dart {e})"
-                            )));
+                            return Err(bad(format!("the generalized map is not orientable (g-dart {e})")));
                         }
                         _ => {}
                     }
@@ -177,8 +159,7 @@ pub fn read(path: &Path, data: &[u8]) -> IoResult<CMap3> {
                 two_free |= i == 2;
                 continue;
             }
-            let t = Dart::from_raw(dart_of[e])
-                .ok_or_else(|| bad(format!("g-dart {e} should be kept")))?;
+            let t = Dart::from_raw(dart_of[e]).ok_or_else(|| bad(format!("g-dart {e} should be kept")))?;
             map.link(d, i, t);
         }
     }
@@ -206,15 +187,9 @@ pub fn write(path: &Path, map: &CMap3, w: &mut dyn Write) -> IoResult<()> {
         let o2 = gi(map.beta(d, 2));
         let o3 = gi(map.beta(d, 3));
         let v = map.vertex_of(d) as usize;
-        let point = if has_point[v] {
-            None
-        } else {
-            Some(map.position(v as u32))
-        };
+        let point = if has_point[v] { None } else { Some(map.position(v as u32)) };
         has_point[v] = true;
-        let p = point.map_or("0".to_string(), |p| {
-            format!("1\t{}\t{}\t{}", p[0], p[1], p[2])
-        });
+        let p = point.map_or("0".to_string(), |p| format!("1\t{}\t{}\t{}", p[0], p[1], p[2]));
         let (a2, b2) = o2.map_or((a, b), |m| (2 * m + 1, 2 * m));
         let (a3, b3) = o3.map_or((a, b), |m| (2 * m + 1, 2 * m));
         writeln!(w, "{b}\t{prev}\t{a2}\t{a3}\t0\t0\t0\t0\t{p}").map_err(io)?;

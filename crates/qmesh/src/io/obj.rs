@@ -23,26 +23,18 @@ pub fn read(path: &Path, data: &[u8]) -> IoResult<IndexedMesh> {
                 let line = lx.rest_of_line();
                 for tok in line.split_whitespace() {
                     let first = tok.split('/').next().unwrap_or("");
-                    let i: i64 = first.parse().map_err(|_| {
-                        lx.err(format!(
-                            "expected a vertex index in face, found '{}'",
-                            clip(tok)
-                        ))
-                    })?;
+                    let i: i64 = first
+                        .parse()
+                        .map_err(|_| lx.err(format!("expected a vertex index in face, found '{}'", clip(tok))))?;
                     let n = mesh.points.len() as i64;
                     let idx = if i < 0 { n + i } else { i - 1 };
                     if i == 0 || idx < 0 || idx >= n {
-                        return Err(lx.err(format!(
-                            "face vertex index {i} is out of range (1..={n} or -{n}..=-1)"
-                        )));
+                        return Err(lx.err(format!("face vertex index {i} is out of range (1..={n} or -{n}..=-1)")));
                     }
                     poly.push(idx as u32);
                 }
                 if poly.len() < 3 {
-                    return Err(lx.err(format!(
-                        "expected at least 3 vertices in a face, found {}",
-                        poly.len()
-                    )));
+                    return Err(lx.err(format!("expected at least 3 vertices in a face, found {}", poly.len())));
                 }
                 mesh.push_polygon(&poly);
             }

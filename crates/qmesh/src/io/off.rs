@@ -15,10 +15,7 @@ pub fn read(path: &Path, data: &[u8]) -> IoResult<IndexedMesh> {
         return Err(lx.err(format!("expected the 'OFF' header, found '{}'", clip(head))));
     }
     if head.starts_with("ST") || head.starts_with('4') || head.starts_with('n') {
-        return Err(IoError::unsupported(
-            path,
-            format!("OFF variant '{head}' is not supported"),
-        ));
+        return Err(IoError::unsupported(path, format!("OFF variant '{head}' is not supported")));
     }
     let nv = lx.count("vertices", 6)?;
     let nf = lx.count("faces", 2)?;

@@ -16,18 +16,8 @@ enum Encoding {
 
 #[derive(Clone, Debug)]
 enum Property {
-    Scalar {
-        name: String,
-        size: usize,
-        ty: String,
-    },
-    List {
-        name: String,
-        count_size: usize,
-        count_ty: String,
-        size: usize,
-        ty: String,
-    },
+    Scalar { name: String, size: usize, ty: String },
+    List { name: String, count_size: usize, count_ty: String, size: usize, ty: String },
 }
 
 #[derive(Clone, Debug)]
@@ -51,11 +41,7 @@ fn decode(b: &[u8], ty: &str, enc: Encoding) -> f64 {
     macro_rules! get {
         ($t:ty) => {{
             let a = b.try_into().unwrap();
-            (if enc == Encoding::Big {
-                <$t>::from_be_bytes(a)
-            } else {
-                <$t>::from_le_bytes(a)
-            }) as f64
+            (if enc == Encoding::Big { <$t>::from_be_bytes(a) } else { <$t>::from_le_bytes(a) }) as f64
         }};
     }
     match ty {
@@ -72,25 +58,14 @@ fn decode(b: &[u8], ty: &str, enc: Encoding) -> f64 {
 
 /// Reads one value of a property type, ASCII or binary.
 fn value(lx: &mut Lexer<'_>, enc: Encoding, size: usize, ty: &str, what: &str) -> IoResult<f64> {
-    let v = if enc == Encoding::Ascii {
-        lx.parse::<f64>(what)?
-    } else {
-        decode(lx.bytes(size, what)?, ty, enc)
-    };
-    if v.is_finite() {
-        Ok(v)
-    } else {
-        Err(lx.err_at_byte(format!("expected a finite {what}, found {v}")))
-    }
+    let v = if enc == Encoding::Ascii { lx.parse::<f64>(what)? } else { decode(lx.bytes(size, what)?, ty, enc) };
+    if v.is_finite() { Ok(v) } else { Err(lx.err_at_byte(format!("expected a finite {what}, found {v}"))) }
 }
 
 fn header(lx: &mut Lexer<'_>) -> IoResult<(Encoding, Vec<Element>)> {
     let magic = lx.rest_of_line();
     if magic.trim() != "ply" {
-        return Err(lx.err(format!(
-            "expected 'ply' on the first line, found '{}'",
-            clip(magic)
-        )));
+        return Err(lx.err(format!("expected 'ply' on the first line, found '{}'", clip(magic))));
     }
     let mut enc = None;
     let mut elements: Vec<Element> = Vec::new();
@@ -107,33 +82,22 @@ fn header(lx: &mut Lexer<'_>) -> IoResult<(Encoding, Vec<Element>)> {
                     "binary_little_endian" => Encoding::Little,
                     "binary_big_endian" => Encoding::Big,
                     _ => {
-                        return Err(lx.err(format!(
-                            "expected a PLY format (ascii, binary_…_endian), found '{f}'"
-                        )));
+                        return Err(lx.err(format!("expected a PLY format (ascii, binary_…_endian), found '{f}'")));
                     }
                 })
             }
             ["comment", ..] | ["obj_info", ..] | [] => {}
             ["element", name, n] => {
-                let n: i64 = n.parse().map_err(|_| {
-                    lx.err(format!("expected an element count, found '{}'", clip(n)))
-                })?;
+                let n: i64 =
+                    n.parse().map_err(|_| lx.err(format!("expected an element count, found '{}'", clip(n))))?;
                 let count = lx.check_count(n, &format!("'{name}' elements"), 1)?;
-                elements.push(Element {
-                    name: name.to_string(),
-                    count,
-                    props: Vec::new(),
-                });
+                elements.push(Element { name: name.to_string(), count, props: Vec::new() });
             }
             ["property", "list", ct, t, name] => {
-                let el = elements
-                    .last_mut()
-                    .ok_or_else(|| lx.err("expected 'element' before 'property'"))?;
+                let el = elements.last_mut().ok_or_else(|| lx.err("expected 'element' before 'property'"))?;
                 let (cs, s) = (type_size(ct), type_size(t));
                 let (Some(count_size), Some(size)) = (cs, s) else {
-                    return Err(lx.err(format!(
-                        "expected PLY scalar types in list property, found '{ct} {t}'"
-                    )));
+                    return Err(lx.err(format!("expected PLY scalar types in list property, found '{ct} {t}'")));
                 };
                 el.props.push(Property::List {
                     name: name.to_string(),
@@ -144,24 +108,14 @@ fn header(lx: &mut Lexer<'_>) -> IoResult<(Encoding, Vec<Element>)> {
                 });
             }
             ["property", t, name] => {
-                let el = elements
-                    .last_mut()
-                    .ok_or_else(|| lx.err("expected 'element' before 'property'"))?;
-                let size = type_size(t).ok_or_else(|| {
-                    lx.err(format!("expected a PLY scalar type, found '{}'", clip(t)))
-                })?;
-                el.props.push(Property::Scalar {
-                    name: name.to_string(),
-                    size,
-                    ty: t.to_string(),
-                });
+                let el = elements.last_mut().ok_or_else(|| lx.err("expected 'element' before 'property'"))?;
+                let size =
+                    type_size(t).ok_or_else(|| lx.err(format!("expected a PLY scalar type, found '{}'", clip(t))))?;
+                el.props.push(Property::Scalar { name: name.to_string(), size, ty: t.to_string() });
             }
             ["end_header"] => break,
             _ => {
-                return Err(lx.err(format!(
-                    "expected a PLY header line, found '{}'",
-                    clip(line)
-                )));
+                return Err(lx.err(format!("expected a PLY header line, found '{}'", clip(line))));
             }
         }
     }
@@ -193,28 +147,18 @@ pub fn read(path: &Path, data: &[u8]) -> IoResult<IndexedMesh> {
                             _ => {}
                         }
                     }
-                    Property::List {
-                        name,
-                        count_size,
-                        count_ty,
-                        size,
-                        ty,
-                    } => {
+                    Property::List { name, count_size, count_ty, size, ty } => {
                         let n = value(&mut lx, enc, *count_size, count_ty, "list length")?;
-                        let n = lx.check_count(
-                            n as i64,
-                            "list entries",
-                            if enc == Encoding::Ascii { 2 } else { *size },
-                        )?;
-                        let is_face = el.name == "face"
-                            && (name == "vertex_indices" || name == "vertex_index");
+                        let n =
+                            lx.check_count(n as i64, "list entries", if enc == Encoding::Ascii { 2 } else { *size })?;
+                        let is_face = el.name == "face" && (name == "vertex_indices" || name == "vertex_index");
                         for _ in 0..n {
                             let v = value(&mut lx, enc, *size, ty, "vertex index")?;
                             if is_face {
                                 if v < 0.0 || v as usize >= nv {
-                                    return Err(lx.err(format!(
-                                        "face {item}: vertex index {v} is out of range (0..{nv})"
-                                    )));
+                                    return Err(
+                                        lx.err(format!("face {item}: vertex index {v} is out of range (0..{nv})"))
+                                    );
                                 }
                                 poly.push(v as u32);
                             }
@@ -226,10 +170,9 @@ pub fn read(path: &Path, data: &[u8]) -> IoResult<IndexedMesh> {
                 mesh.points.push(xyz);
             } else if el.name == "face" {
                 if poly.len() < 3 {
-                    return Err(lx.err(format!(
-                        "face {item}: expected at least 3 vertex indices, found {}",
-                        poly.len()
-                    )));
+                    return Err(
+                        lx.err(format!("face {item}: expected at least 3 vertex indices, found {}", poly.len()))
+                    );
                 }
                 mesh.push_polygon(&poly);
             }
@@ -239,10 +182,7 @@ pub fn read(path: &Path, data: &[u8]) -> IoResult<IndexedMesh> {
         }
     }
     if mesh.nb_polygons() == 0 {
-        return Err(IoError::unsupported(
-            path,
-            "the PLY file has no faces (point clouds are not meshes)",
-        ));
+        return Err(IoError::unsupported(path, "the PLY file has no faces (point clouds are not meshes)"));
     }
     Ok(mesh)
 }

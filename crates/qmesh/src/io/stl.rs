@@ -35,12 +35,8 @@ impl Welder {
 /// Parses an STL file (binary when the size matches the 84 + 50·n layout and the file
 /// does not start with `solid` followed by `facet`).
 pub fn read(path: &Path, data: &[u8]) -> IoResult<IndexedMesh> {
-    let mut w = Welder {
-        mesh: IndexedMesh::new(),
-        ..Default::default()
-    };
-    let looks_ascii =
-        data.starts_with(b"solid") && data.windows(5).take(1024).any(|x| x == b"facet");
+    let mut w = Welder { mesh: IndexedMesh::new(), ..Default::default() };
+    let looks_ascii = data.starts_with(b"solid") && data.windows(5).take(1024).any(|x| x == b"facet");
     if looks_ascii {
         read_ascii(path, data, &mut w)?;
     } else {
@@ -79,39 +75,23 @@ fn read_ascii(path: &Path, data: &[u8], w: &mut Welder) -> IoResult<()> {
                 w.triangle(tri);
             }
             other => {
-                return Err(lx.err(format!(
-                    "expected 'facet' or 'endsolid', found '{}'",
-                    super::lexer::clip(other)
-                )));
+                return Err(lx.err(format!("expected 'facet' or 'endsolid', found '{}'", super::lexer::clip(other))));
             }
         }
     }
 }
 
 fn read_binary(path: &Path, data: &[u8], w: &mut Welder) -> IoResult<()> {
-    let err = |at: usize, msg: String| IoError::Parse {
-        path: path.into(),
-        at: Location::Byte(at),
-        msg,
-    };
+    let err = |at: usize, msg: String| IoError::Parse { path: path.into(), at: Location::Byte(at), msg };
     if data.len() < 84 {
-        return Err(err(
-            data.len(),
-            format!(
-                "expected a binary STL header of 84 bytes, the file has {}",
-                data.len()
-            ),
-        ));
+        return Err(err(data.len(), format!("expected a binary STL header of 84 bytes, the file has {}", data.len())));
     }
     let n = u32::from_le_bytes(data[80..84].try_into().unwrap()) as usize;
     let need = 84 + 50 * n as u128;
     if (data.len() as u128) < need {
         return Err(err(
             84,
-            format!(
-                "header declares {n} triangles ({need} bytes) but the file has {} bytes",
-                data.len()
-            ),
+            format!("header declares {n} triangles ({need} bytes) but the file has {} bytes", data.len()),
         ));
     }
     for k in 0..n {
@@ -119,10 +99,7 @@ fn read_binary(path: &Path, data: &[u8], w: &mut Welder) -> IoResult<()> {
         let f = |i: usize| f32::from_le_bytes(rec[i * 4..i * 4 + 4].try_into().unwrap()) as f64;
         let tri = [[f(3), f(4), f(5)], [f(6), f(7), f(8)], [f(9), f(10), f(11)]];
         if tri.iter().flatten().any(|x| !x.is_finite()) {
-            return Err(err(
-                84 + 50 * k,
-                format!("triangle {k}: expected finite coordinates"),
-            ));
+            return Err(err(84 + 50 * k, format!("triangle {k}: expected finite coordinates")));
         }
         w.triangle(tri);
     }

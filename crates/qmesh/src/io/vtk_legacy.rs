@@ -11,15 +11,8 @@ use super::lexer::{Lexer, clip};
 use crate::build::{CellKind, IndexedMesh};
 
 /// Names of cell arrays read as volume labels.
-pub const LABEL_ARRAYS: &[&str] = &[
-    "CellEntityIds",
-    "gmsh:physical",
-    "gmsh:geometrical",
-    "medit:ref",
-    "label",
-    "labels",
-    "MaterialIds",
-];
+pub const LABEL_ARRAYS: &[&str] =
+    &["CellEntityIds", "gmsh:physical", "gmsh:geometrical", "medit:ref", "label", "labels", "MaterialIds"];
 
 struct Reader<'a> {
     lx: Lexer<'a>,
@@ -39,10 +32,7 @@ fn type_size(t: &str) -> Option<usize> {
 impl<'a> Reader<'a> {
     fn dtype(&mut self) -> IoResult<(&'a str, usize)> {
         let t = self.lx.expect("a data type (float, double, int…)")?;
-        let s = type_size(t).ok_or_else(|| {
-            self.lx
-                .err(format!("expected a VTK data type, found '{}'", clip(t)))
-        })?;
+        let s = type_size(t).ok_or_else(|| self.lx.err(format!("expected a VTK data type, found '{}'", clip(t))))?;
         Ok((t, s))
     }
 
@@ -69,16 +59,12 @@ impl<'a> Reader<'a> {
                 ("unsigned_short", 2) => u16::from_be_bytes(c.try_into().unwrap()) as f64,
                 ("unsigned_int", 4) => u32::from_be_bytes(c.try_into().unwrap()) as f64,
                 (_, 4) => i32::from_be_bytes(c.try_into().unwrap()) as f64,
-                ("unsigned_long" | "vtktypeuint64", 8) => {
-                    u64::from_be_bytes(c.try_into().unwrap()) as f64
-                }
+                ("unsigned_long" | "vtktypeuint64", 8) => u64::from_be_bytes(c.try_into().unwrap()) as f64,
                 (_, 8) => i64::from_be_bytes(c.try_into().unwrap()) as f64,
                 _ => unreachable!("type_size covers every type"),
             };
             if !v.is_finite() {
-                return Err(self
-                    .lx
-                    .err_at_byte(format!("expected finite {what}, found {v}")));
+                return Err(self.lx.err_at_byte(format!("expected finite {what}, found {v}")));
             }
             out.push(v);
         }
@@ -138,22 +124,14 @@ impl<'a> Reader<'a> {
             "COLOR_SCALARS" => {
                 self.lx.expect("an array name")?;
                 let k: usize = self.lx.parse("the number of colour components")?;
-                let (t, s) = if self.binary {
-                    ("unsigned_char", 1)
-                } else {
-                    ("float", 4)
-                };
+                let (t, s) = if self.binary { ("unsigned_char", 1) } else { ("float", 4) };
                 self.numbers(n * k.min(4), t, s, kw)?;
                 Ok(None)
             }
             "LOOKUP_TABLE" => {
                 self.lx.expect("a lookup table name")?;
                 let k = self.lx.count("lookup table entries", 4)?;
-                let (t, s) = if self.binary {
-                    ("unsigned_char", 1)
-                } else {
-                    ("float", 4)
-                };
+                let (t, s) = if self.binary { ("unsigned_char", 1) } else { ("float", 4) };
                 self.numbers(k * 4, t, s, kw)?;
                 Ok(None)
             }
@@ -166,9 +144,7 @@ impl<'a> Reader<'a> {
                     let k: usize = self.lx.parse("the number of components")?;
                     let tuples: usize = self.lx.parse("the number of tuples")?;
                     let (t, s) = self.dtype()?;
-                    let total = k
-                        .checked_mul(tuples)
-                        .ok_or_else(|| self.lx.err("array size overflows"))?;
+                    let total = k.checked_mul(tuples).ok_or_else(|| self.lx.err("array size overflows"))?;
                     let v = self.integers_or_floats(total, t, s, name)?;
                     if LABEL_ARRAYS.contains(&name) && k == 1 {
                         labels = Some(v);
@@ -184,34 +160,19 @@ impl<'a> Reader<'a> {
                 }
                 Ok(None)
             }
-            other => Err(self.lx.err(format!(
-                "expected a data attribute (SCALARS, FIELD…), found '{}'",
-                clip(other)
-            ))),
+            other => Err(self.lx.err(format!("expected a data attribute (SCALARS, FIELD…), found '{}'", clip(other)))),
         }
     }
 
-    fn integers_or_floats(
-        &mut self,
-        n: usize,
-        t: &str,
-        s: usize,
-        what: &str,
-    ) -> IoResult<Vec<i64>> {
-        Ok(self
-            .numbers(n, t, s, what)?
-            .into_iter()
-            .map(|x| x as i64)
-            .collect())
+    fn integers_or_floats(&mut self, n: usize, t: &str, s: usize, what: &str) -> IoResult<Vec<i64>> {
+        Ok(self.numbers(n, t, s, what)?.into_iter().map(|x| x as i64).collect())
     }
 
     /// Cell connectivity as (offsets, flat ids), legacy or 5.x layout.
     fn cells(&mut self) -> IoResult<(Vec<usize>, Vec<i64>)> {
         let n = self.lx.count("cells", 2)?;
         let size: i64 = self.lx.parse("the size of the cell list")?;
-        let size =
-            self.lx
-                .check_count(size, "cell list entries", if self.binary { 4 } else { 2 })?;
+        let size = self.lx.check_count(size, "cell list entries", if self.binary { 4 } else { 2 })?;
         if self.lx.peek() == Some("OFFSETS") {
             self.lx.token();
             let (t, s) = self.dtype()?;
@@ -222,10 +183,9 @@ impl<'a> Reader<'a> {
             let mut offs = Vec::with_capacity(n);
             for (k, &o) in offsets.iter().enumerate() {
                 if o < 0 || o as usize > conn.len() || (k > 0 && o < offsets[k - 1]) {
-                    return Err(self.lx.err(format!(
-                        "cell offset {o} is out of order or beyond the connectivity ({})",
-                        conn.len()
-                    )));
+                    return Err(self
+                        .lx
+                        .err(format!("cell offset {o} is out of order or beyond the connectivity ({})", conn.len())));
                 }
                 offs.push(o as usize);
             }
@@ -240,23 +200,18 @@ impl<'a> Reader<'a> {
         let mut k = 0usize;
         offs.push(0);
         for c in 0..n {
-            let m = *flat.get(k).ok_or_else(|| {
-                self.lx
-                    .err(format!("cell list ends before cell {c} (of {n})"))
-            })?;
+            let m = *flat.get(k).ok_or_else(|| self.lx.err(format!("cell list ends before cell {c} (of {n})")))?;
             if m < 0 || k + 1 + m as usize > flat.len() {
-                return Err(self.lx.err(format!(
-                    "cell {c} declares {m} nodes, beyond the declared list size {size}"
-                )));
+                return Err(self.lx.err(format!("cell {c} declares {m} nodes, beyond the declared list size {size}")));
             }
             conn.extend_from_slice(&flat[k + 1..k + 1 + m as usize]);
             offs.push(conn.len());
             k += 1 + m as usize;
         }
         if k != flat.len() {
-            return Err(self.lx.err(format!(
-                "cell list size {size} does not match the {n} cells it holds ({k} entries)"
-            )));
+            return Err(self
+                .lx
+                .err(format!("cell list size {size} does not match the {n} cells it holds ({k} entries)")));
         }
         Ok((offs, conn))
     }
@@ -267,10 +222,7 @@ pub fn read(path: &Path, data: &[u8]) -> IoResult<IndexedMesh> {
     let mut lx = Lexer::new(path, data, None);
     let first = lx.rest_of_line();
     if !first.starts_with("# vtk DataFile") {
-        return Err(lx.err(format!(
-            "expected '# vtk DataFile Version x.x', found '{}'",
-            clip(first)
-        )));
+        return Err(lx.err(format!("expected '# vtk DataFile Version x.x', found '{}'", clip(first))));
     }
     lx.rest_of_line(); // title
     let fmt = lx.expect("ASCII or BINARY")?;
@@ -350,9 +302,7 @@ pub(super) fn assemble(
     mesh.points = points;
     let idx = |v: i64, c: usize| -> IoResult<u32> {
         if v < 0 || v as usize >= np {
-            Err(err(format!(
-                "cell {c}: point index {v} is out of range (the file has {np} points)"
-            )))
+            Err(err(format!("cell {c}: point index {v} is out of range (the file has {np} points)")))
         } else {
             Ok(v as u32)
         }
@@ -361,14 +311,9 @@ pub(super) fn assemble(
     let (mut lower, mut hex_as_tet, mut unsupported) = (0usize, 0usize, 0usize);
     if let Some((offs, conn)) = &cells {
         let n = offs.len() - 1;
-        let types = types
-            .as_ref()
-            .ok_or_else(|| err("expected a CELL_TYPES section after CELLS".into()))?;
+        let types = types.as_ref().ok_or_else(|| err("expected a CELL_TYPES section after CELLS".into()))?;
         if types.len() != n {
-            return Err(err(format!(
-                "CELL_TYPES lists {} types for {n} cells",
-                types.len()
-            )));
+            return Err(err(format!("CELL_TYPES lists {} types for {n} cells", types.len())));
         }
         for c in 0..n {
             let raw = &conn[offs[c]..offs[c + 1]];
@@ -389,24 +334,14 @@ pub(super) fn assemble(
                 Some(kind) => {
                     let need = kind.nodes().unwrap_or(0);
                     if raw.len() != need {
-                        return Err(err(format!(
-                            "cell {c}: VTK type {t} needs {need} points, found {}",
-                            raw.len()
-                        )));
+                        return Err(err(format!("cell {c}: VTK type {t} needs {need} points, found {}", raw.len())));
                     }
-                    let nodes = raw
-                        .iter()
-                        .map(|&v| idx(v, c))
-                        .collect::<IoResult<Vec<u32>>>()?;
+                    let nodes = raw.iter().map(|&v| idx(v, c)).collect::<IoResult<Vec<u32>>>()?;
                     mesh.push_cell(kind, &nodes, label_of(&labels, c));
                 }
                 None => match t {
                     5 | 7 | 9 => {
-                        surface.push(
-                            raw.iter()
-                                .map(|&v| idx(v, c))
-                                .collect::<IoResult<Vec<u32>>>()?,
-                        );
+                        surface.push(raw.iter().map(|&v| idx(v, c)).collect::<IoResult<Vec<u32>>>()?);
                     }
                     1..=4 => lower += 1,
                     _ => unsupported += 1,
@@ -416,23 +351,14 @@ pub(super) fn assemble(
     }
     for (offs, conn) in &polys {
         for c in 0..offs.len() - 1 {
-            surface.push(
-                conn[offs[c]..offs[c + 1]]
-                    .iter()
-                    .map(|&v| idx(v, c))
-                    .collect::<IoResult<Vec<u32>>>()?,
-            );
+            surface.push(conn[offs[c]..offs[c + 1]].iter().map(|&v| idx(v, c)).collect::<IoResult<Vec<u32>>>()?);
         }
     }
     if hex_as_tet > 0 {
-        mesh.warnings.push(format!(
-            "{hex_as_tet} cells declared type 10 (tetra) list 8 points: read as hexahedra"
-        ));
+        mesh.warnings.push(format!("{hex_as_tet} cells declared type 10 (tetra) list 8 points: read as hexahedra"));
     }
     if unsupported > 0 {
-        mesh.warnings.push(format!(
-            "skipped {unsupported} cells of unsupported (non-linear) VTK types"
-        ));
+        mesh.warnings.push(format!("skipped {unsupported} cells of unsupported (non-linear) VTK types"));
     }
     if mesh.is_volume() {
         lower += surface.len();
@@ -440,9 +366,7 @@ pub(super) fn assemble(
         surface.iter().for_each(|p| mesh.push_polygon(p));
     }
     if lower > 0 {
-        mesh.warnings.push(format!(
-            "skipped {lower} lower-dimensional cells (points, lines, polygons)"
-        ));
+        mesh.warnings.push(format!("skipped {lower} lower-dimensional cells (points, lines, polygons)"));
     }
     Ok(mesh)
 }
@@ -486,9 +410,7 @@ fn polyhedron_stream(
 pub fn write(path: &Path, mesh: &IndexedMesh, binary: bool, w: &mut dyn Write) -> IoResult<()> {
     let io = |e| IoError::io(path, e);
     let cells: Vec<(u8, &[u32])> = if mesh.is_volume() {
-        (0..mesh.nb_cells())
-            .map(|i| (mesh.kinds[i].vtk_type(), mesh.cell(i).1))
-            .collect()
+        (0..mesh.nb_cells()).map(|i| (mesh.kinds[i].vtk_type(), mesh.cell(i).1)).collect()
     } else {
         (0..mesh.nb_polygons())
             .map(|i| {
@@ -505,18 +427,11 @@ pub fn write(path: &Path, mesh: &IndexedMesh, binary: bool, w: &mut dyn Write) -
             .collect()
     };
     let mode = if binary { "BINARY" } else { "ASCII" };
-    writeln!(
-        w,
-        "# vtk DataFile Version 4.2\nwritten by qmesh\n{mode}\nDATASET UNSTRUCTURED_GRID"
-    )
-    .map_err(io)?;
+    writeln!(w, "# vtk DataFile Version 4.2\nwritten by qmesh\n{mode}\nDATASET UNSTRUCTURED_GRID").map_err(io)?;
     writeln!(w, "POINTS {} double", mesh.points.len()).map_err(io)?;
     if binary {
         let mut buf = Vec::with_capacity(mesh.points.len() * 24);
-        mesh.points
-            .iter()
-            .flatten()
-            .for_each(|x| buf.extend_from_slice(&x.to_be_bytes()));
+        mesh.points.iter().flatten().for_each(|x| buf.extend_from_slice(&x.to_be_bytes()));
         w.write_all(&buf).map_err(io)?;
         writeln!(w).map_err(io)?;
     } else {
@@ -526,10 +441,7 @@ pub fn write(path: &Path, mesh: &IndexedMesh, binary: bool, w: &mut dyn Write) -
     }
     let size: usize = cells.iter().map(|c| c.1.len() + 1).sum();
     writeln!(w, "CELLS {} {size}", cells.len()).map_err(io)?;
-    let ints = |w: &mut dyn Write,
-                v: &mut dyn Iterator<Item = i32>,
-                per_line: bool|
-     -> std::io::Result<()> {
+    let ints = |w: &mut dyn Write, v: &mut dyn Iterator<Item = i32>, per_line: bool| -> std::io::Result<()> {
         if binary {
             let buf: Vec<u8> = v.flat_map(|x| x.to_be_bytes()).collect();
             w.write_all(&buf)?;
@@ -547,9 +459,7 @@ pub fn write(path: &Path, mesh: &IndexedMesh, binary: bool, w: &mut dyn Write) -
         }
     };
     if binary {
-        let mut it = cells
-            .iter()
-            .flat_map(|c| std::iter::once(c.1.len() as i32).chain(c.1.iter().map(|&v| v as i32)));
+        let mut it = cells.iter().flat_map(|c| std::iter::once(c.1.len() as i32).chain(c.1.iter().map(|&v| v as i32)));
         ints(w, &mut it, false).map_err(io)?;
     } else {
         for c in &cells {
@@ -563,12 +473,7 @@ pub fn write(path: &Path, mesh: &IndexedMesh, binary: bool, w: &mut dyn Write) -
     writeln!(w, "CELL_TYPES {}", cells.len()).map_err(io)?;
     ints(w, &mut cells.iter().map(|c| c.0 as i32), false).map_err(io)?;
     if mesh.is_volume() && !mesh.labels.is_empty() {
-        writeln!(
-            w,
-            "CELL_DATA {}\nSCALARS label int 1\nLOOKUP_TABLE default",
-            cells.len()
-        )
-        .map_err(io)?;
+        writeln!(w, "CELL_DATA {}\nSCALARS label int 1\nLOOKUP_TABLE default", cells.len()).map_err(io)?;
         ints(w, &mut mesh.labels.iter().copied(), false).map_err(io)?;
     }
     Ok(())

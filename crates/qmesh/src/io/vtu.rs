@@ -5,8 +5,8 @@ use std::io::Write;
 use std::path::Path;
 
 use vtkio::model::{
-    Attribute, Attributes, ByteOrder, CellType, Cells, DataArray, DataSet, IOBuffer, Piece,
-    UnstructuredGridPiece, Version, VertexNumbers, Vtk,
+    Attribute, Attributes, ByteOrder, CellType, Cells, DataArray, DataSet, IOBuffer, Piece, UnstructuredGridPiece,
+    Version, VertexNumbers, Vtk,
 };
 
 use super::error::{IoError, IoResult};
@@ -41,21 +41,16 @@ pub fn read(path: &Path, data: &[u8]) -> IoResult<IndexedMesh> {
             Piece::Inline(p) => *p,
             _ => return Err(err("pieces stored in other files are not supported".into())),
         };
-        let points: Vec<f64> = p
-            .points
-            .cast_into()
-            .ok_or_else(|| err("points are not numbers".into()))?;
+        let points: Vec<f64> = p.points.cast_into().ok_or_else(|| err("points are not numbers".into()))?;
         if points.iter().any(|x| !x.is_finite()) {
             return Err(err("expected finite point coordinates".into()));
         }
         let types: Vec<i64> = p.cells.types.iter().map(|&t| t as u8 as i64).collect();
         let (n, flat) = p.cells.cell_verts.into_legacy();
-        let cells = flat_to_offsets(n, &flat)
-            .ok_or_else(|| err("cell connectivity is shorter than its offsets".into()))?;
+        let cells =
+            flat_to_offsets(n, &flat).ok_or_else(|| err("cell connectivity is shorter than its offsets".into()))?;
         let labels = p.data.cell.iter().find_map(|a| match a {
-            Attribute::DataArray(DataArray { name, data, .. })
-                if LABEL_ARRAYS.contains(&name.as_str()) =>
-            {
+            Attribute::DataArray(DataArray { name, data, .. }) if LABEL_ARRAYS.contains(&name.as_str()) => {
                 data.cast_into::<i64>()
             }
             _ => None,
@@ -117,10 +112,7 @@ pub fn write(path: &Path, mesh: &IndexedMesh, w: &mut dyn Write) -> IoResult<()>
                 CellKind::Prism => CellType::Wedge,
                 CellKind::Hex => CellType::Hexahedron,
                 CellKind::Polyhedron => {
-                    return Err(IoError::unsupported(
-                        path,
-                        "polyhedra cannot be written to .vtu yet; use .vtk",
-                    ));
+                    return Err(IoError::unsupported(path, "polyhedra cannot be written to .vtu yet; use .vtk"));
                 }
             });
             conn.extend(nodes.iter().map(|&v| v as u64));
@@ -140,18 +132,11 @@ pub fn write(path: &Path, mesh: &IndexedMesh, w: &mut dyn Write) -> IoResult<()>
     }
     let mut data = Attributes::new();
     if mesh.is_volume() && !mesh.labels.is_empty() {
-        data.cell
-            .push(Attribute::scalars("label", 1).with_data(IOBuffer::I32(mesh.labels.clone())));
+        data.cell.push(Attribute::scalars("label", 1).with_data(IOBuffer::I32(mesh.labels.clone())));
     }
     let piece = UnstructuredGridPiece {
         points: IOBuffer::F64(mesh.points.iter().flatten().copied().collect()),
-        cells: Cells {
-            cell_verts: VertexNumbers::XML {
-                connectivity: conn,
-                offsets,
-            },
-            types,
-        },
+        cells: Cells { cell_verts: VertexNumbers::XML { connectivity: conn, offsets }, types },
         data,
     };
     let vtk = Vtk {
@@ -161,6 +146,5 @@ pub fn write(path: &Path, mesh: &IndexedMesh, w: &mut dyn Write) -> IoResult<()>
         data: DataSet::inline(piece),
         file_path: None,
     };
-    vtk.write_xml(w)
-        .map_err(|e| IoError::unsupported(path, format!("VTU writer: {e}")))
+    vtk.write_xml(w).map_err(|e| IoError::unsupported(path, format!("VTU writer: {e}")))
 }
