@@ -46,9 +46,13 @@ impl CMap3 {
         for &x in &both {
             self.delete_dart(x);
         }
-        for (a, b) in links {
+        let mut touched = Vec::with_capacity(links.len() * 4);
+        for &(a, b) in &links {
             self.link(a, 2, b);
+            touched.extend([a, b, self.next(a), self.next(b)]);
         }
+        // Vertices that were joined only through the removed face come apart.
+        self.split_vertex_ids(&touched);
         Ok(())
     }
 

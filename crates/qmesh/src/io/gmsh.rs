@@ -224,15 +224,19 @@ fn elements_v4(lx: &mut Lexer<'_>, tags: &NodeTags, els: &mut Elements) -> IoRes
     lx.expect_word("$EndElements")
 }
 
+/// Identifies one element block: entity dimension, entity tag, element type.
+type BlockKey = (u8, i32, u8);
+
 /// Writes a gmsh 4.1 ASCII mesh: one node block, one element block per (kind, label).
 ///
 /// # Errors
 /// Polyhedra cannot be stored in .msh files.
 pub fn write(path: &Path, mesh: &IndexedMesh, w: &mut dyn Write) -> IoResult<()> {
     let io = |e| IoError::io(path, e);
-    let mut blocks: Vec<((u8, i32, u8), Vec<&[u32]>)> = Vec::new();
-    let mut index: FxHashMap<(u8, i32, u8), usize> = FxHashMap::default();
-    let mut add = |key: (u8, i32, u8)| -> usize {
+    // (entity dimension, entity tag, element type) → elements of that block.
+    let mut blocks: Vec<(BlockKey, Vec<&[u32]>)> = Vec::new();
+    let mut index: FxHashMap<BlockKey, usize> = FxHashMap::default();
+    let mut add = |key: BlockKey| -> usize {
         *index.entry(key).or_insert_with(|| {
             blocks.push((key, Vec::new()));
             blocks.len() - 1

@@ -88,7 +88,9 @@ impl<'a> Lexer<'a> {
         match self.token() {
             Some(t) => Ok(t),
             None => {
-                self.tok_line = self.line;
+                // End of file is reported on the last line that has content.
+                let ends_nl = self.data.last() == Some(&b'\n');
+                self.tok_line = if ends_nl { (self.line - 1).max(1) } else { self.line };
                 Err(self.err(format!("expected {what}, found end of file")))
             }
         }
@@ -163,6 +165,7 @@ impl<'a> Lexer<'a> {
 
     /// The rest of the current line (without the newline), consuming it.
     pub fn rest_of_line(&mut self) -> &'a str {
+        self.tok_line = self.line;
         let start = self.pos;
         while self.pos < self.data.len() && self.data[self.pos] != b'\n' {
             self.pos += 1;

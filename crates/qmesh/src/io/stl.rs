@@ -62,7 +62,8 @@ fn read_ascii(path: &Path, data: &[u8], w: &mut Welder) -> IoResult<()> {
             "endsolid" => return Ok(()),
             "facet" => {
                 lx.expect_word("normal")?;
-                lx.point().or_else(|_| Ok::<_, IoError>([0.0; 3]))?;
+                // The normal is recomputed from the vertices; a malformed one is ignored.
+                let _ = lx.point();
                 lx.expect_word("outer")?;
                 lx.expect_word("loop")?;
                 let mut tri = [[0.0; 3]; 3];

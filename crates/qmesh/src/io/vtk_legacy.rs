@@ -169,7 +169,7 @@ impl<'a> Reader<'a> {
     }
 
     /// Cell connectivity as (offsets, flat ids), legacy or 5.x layout.
-    fn cells(&mut self) -> IoResult<(Vec<usize>, Vec<i64>)> {
+    fn cells(&mut self, np: usize) -> IoResult<(Vec<usize>, Vec<i64>)> {
         let n = self.lx.count("cells", 2)?;
         let size: i64 = self.lx.parse("the size of the cell list")?;
         let size = self.lx.check_count(size, "cell list entries", if self.binary { 4 } else { 2 })?;
@@ -194,6 +194,9 @@ impl<'a> Reader<'a> {
             }
             return Ok((offs, conn));
         }
+        if !self.binary {
+            return self.ascii_cells(n, size, np);
+        }
         let flat = self.integers(size, "int", 4, "cell list entries")?;
         let mut offs = Vec::with_capacity(n + 1);
         let mut conn = Vec::with_capacity(size.saturating_sub(n));
@@ -212,6 +215,39 @@ impl<'a> Reader<'a> {
             return Err(self
                 .lx
                 .err(format!("cell list size {size} does not match the {n} cells it holds ({k} entries)")));
+        }
+        Ok((offs, conn))
+    }
+}
+
+impl Reader<'_> {
+    /// ASCII `CELLS n size` list, cell by cell, so that an error names its line.
+    fn ascii_cells(&mut self, n: usize, size: usize, np: usize) -> IoResult<(Vec<usize>, Vec<i64>)> {
+        let mut offs = Vec::with_capacity(n + 1);
+        let mut conn = Vec::with_capacity(size.saturating_sub(n));
+        offs.push(0);
+        let mut used = 0usize;
+        for c in 0..n {
+            let m: i64 = self.lx.parse(&format!("the node count of cell {c}"))?;
+            if m < 0 || used + 1 + m as usize > size {
+                return Err(self.lx.err(format!("cell {c} declares {m} nodes, beyond the declared list size {size}")));
+            }
+            for _ in 0..m {
+                let v: i64 = self.lx.parse(&format!("a point index of cell {c}"))?;
+                if v < 0 || v as usize >= np {
+                    return Err(self
+                        .lx
+                        .err(format!("cell {c}: point index {v} is out of range (the file has {np} points)")));
+                }
+                conn.push(v);
+            }
+            used += 1 + m as usize;
+            offs.push(conn.len());
+        }
+        if used != size {
+            return Err(self
+                .lx
+                .err(format!("cell list size {size} does not match the {n} cells it holds ({used} entries)")));
         }
         Ok((offs, conn))
     }
@@ -255,15 +291,15 @@ pub fn read(path: &Path, data: &[u8]) -> IoResult<IndexedMesh> {
                 let v = r.numbers(n * 3, t, s, "point coordinates")?;
                 points = v.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
             }
-            "CELLS" => cells = Some(r.cells()?),
+            "CELLS" => cells = Some(r.cells(points.len())?),
             "POLYGONS" | "TRIANGLE_STRIPS" => {
-                let c = r.cells()?;
+                let c = r.cells(points.len())?;
                 if kw == "POLYGONS" {
                     polys.push(c);
                 }
             }
             "VERTICES" | "LINES" => {
-                r.cells()?;
+                r.cells(points.len())?;
             }
             "CELL_TYPES" => {
                 let n = r.lx.count("cell types", if r.binary { 4 } else { 2 })?;
