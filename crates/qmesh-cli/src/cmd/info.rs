@@ -3,7 +3,7 @@
 use std::process::ExitCode;
 
 use anyhow::Result;
-use qmesh::build::{BuildOptions, count_cell_kinds};
+use qmesh::build::{BuildOptions, count_kinds_of};
 use qmesh::cmap::CMap3;
 use qmesh::io::load_map;
 use serde_json::json;
@@ -24,9 +24,9 @@ pub fn run(a: Args) -> Result<ExitCode> {
     let opts = BuildOptions { fix_orientation: a.input.fix_orientation };
     let loaded = load_map(&a.input.input, parse_format(&a.input.format)?, &opts)?;
     let map: &CMap3 = &loaded.map;
-    let c = map.count_cells();
-    let kinds = count_cell_kinds(map);
-    let violations = map.is_valid();
+    let census = map.census();
+    let (c, violations) = (census.counts, census.violations);
+    let kinds = count_kinds_of(map, &census.volume_reps);
     let surface = map.dimension() == 2;
     let mut j = json!({
         "file": a.input.input.display().to_string(),
@@ -36,7 +36,7 @@ pub fn run(a: Args) -> Result<ExitCode> {
         "edges": c.edges,
         "faces": c.faces,
         "volumes": if surface { 0 } else { c.volumes },
-        "boundary_faces": if surface { 0 } else { map.boundary_faces() },
+        "boundary_faces": if surface { 0 } else { c.boundary_faces },
         "euler_characteristic": c.euler_characteristic(map.dimension()),
         "components": c.components,
         "cell_types": {"tet": kinds.tet, "pyramid": kinds.pyramid, "prism": kinds.prism, "hex": kinds.hex, "other": kinds.other},
@@ -79,7 +79,7 @@ pub fn run(a: Args) -> Result<ExitCode> {
     if surface {
         println!("  boundary edges {}", map.boundary_edges());
     } else {
-        println!("  boundary faces {}", map.boundary_faces());
+        println!("  boundary faces {}", c.boundary_faces);
         println!(
             "  cells: {} hex, {} tet, {} prism, {} pyramid, {} other",
             kinds.hex, kinds.tet, kinds.prism, kinds.pyramid, kinds.other

@@ -24,3 +24,25 @@ pub enum BuildError {
     #[error("the mesh has no cells and no polygons")]
     Empty,
 }
+
+/// What a [`BuildError`] is about: a cell or a polygon, by index.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Subject {
+    Cell(usize),
+    Polygon(usize),
+}
+
+impl BuildError {
+    /// The cells or polygons the error names, the one where it was detected last.
+    pub fn subjects(&self) -> Vec<Subject> {
+        use BuildError::*;
+        match *self {
+            IndexOutOfRange { cell, .. } | BadCell { cell, .. } => vec![Subject::Cell(cell)],
+            BadPolygon { polygon, .. } => vec![Subject::Polygon(polygon)],
+            FaceSharedByMoreThanTwo { a, b, c, .. } => vec![Subject::Cell(a), Subject::Cell(b), Subject::Cell(c)],
+            InconsistentOrientation { a, b, .. } => vec![Subject::Cell(a), Subject::Cell(b)],
+            NonManifoldEdge { a, b, .. } => vec![Subject::Polygon(a), Subject::Polygon(b)],
+            Empty => Vec::new(),
+        }
+    }
+}

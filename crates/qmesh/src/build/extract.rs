@@ -53,40 +53,90 @@ fn cycle(map: &CMap3, d: Dart, n: usize) -> Vec<Dart> {
     out
 }
 
+/// Smallest raw index on the β1 cycle of `x`: an identifier of its face.
+fn face_id(map: &CMap3, x: Dart) -> u32 {
+    let (mut m, mut y) = (x.raw(), map.next(x));
+    while y != x {
+        m = m.min(y.raw());
+        y = map.next(y);
+    }
+    m
+}
+
+/// The faces (a dart and the length of each) of the volume of `d` when it has at most
+/// 6 faces of at most 4 darts (enough for every standard cell), found face by face
+/// through β2 without hashing; None for larger volumes.
+fn small_volume_faces(map: &CMap3, d: Dart) -> Option<SmallFaces> {
+    let mut ids = [0u32; 6];
+    let mut faces = SmallFaces { faces: [(d, 0); 6], len: 1 };
+    faces.faces[0] = (d, face_len(map, d));
+    ids[0] = face_id(map, d);
+    let mut k = 0;
+    while k < faces.len {
+        let (x0, n) = faces.faces[k];
+        k += 1;
+        if n > 4 {
+            return None;
+        }
+        let mut x = x0;
+        for _ in 0..n {
+            let o = map.beta(x, 2)?;
+            let id = face_id(map, o);
+            if !ids[..faces.len].contains(&id) {
+                if faces.len == 6 {
+                    return None;
+                }
+                ids[faces.len] = id;
+                faces.faces[faces.len] = (o, face_len(map, o));
+                faces.len += 1;
+            }
+            x = map.next(x);
+        }
+    }
+    Some(faces)
+}
+
+/// Up to six faces (a dart and a length each), stored inline.
+struct SmallFaces {
+    faces: [(Dart, usize); 6],
+    len: usize,
+}
+
+impl std::ops::Deref for SmallFaces {
+    type Target = [(Dart, usize)];
+    fn deref(&self) -> &[(Dart, usize)] {
+        &self.faces[..self.len]
+    }
+}
+
 /// Recognises the volume of `d` and returns its kind and nodes (VTK order), or for any
 /// other volume the VTK polyhedron face stream (outward faces). `walker` is scratch.
 pub fn recognise_volume(map: &CMap3, d: Dart, walker: &mut OrbitWalker) -> (CellKind, Vec<u32>) {
-    let darts: Vec<Dart> = walker.collect(map, d, Orbit::Volume).to_vec();
-    let mut faces: Vec<(Dart, usize)> = Vec::new();
-    let mut in_face = rustc_hash::FxHashSet::default();
-    for &x in &darts {
-        if in_face.insert(x) {
-            let n = face_len(map, x);
-            cycle(map, x, n).into_iter().skip(1).for_each(|y| {
-                in_face.insert(y);
-            });
-            faces.push((x, n));
-        }
-    }
-    let count = |k: usize| faces.iter().filter(|f| f.1 == k).count();
-    let (tris, quads, nf) = (count(3), count(4), faces.len());
-    let guess = match (nf, tris, quads, darts.len()) {
-        (4, 4, 0, 12) => Some(CellKind::Tet),
-        (5, 4, 1, 16) => Some(CellKind::Pyramid),
-        (5, 2, 3, 18) => Some(CellKind::Prism),
-        (6, 0, 6, 24) => Some(CellKind::Hex),
-        _ => None,
-    };
-    if let Some(kind) = guess
+    if let Some(faces) = small_volume_faces(map, d)
+        && let Some(kind) = guess_kind(&faces)
         && let Some(nodes) = standard_nodes(map, kind, &faces)
     {
         return (kind, nodes);
     }
-    let mut stream = vec![nf as u32];
-    for &(x, n) in &faces {
-        stream.push(n as u32);
-        // Map orientation is inward; VTK polyhedron faces are outward: reverse.
-        stream.extend(cycle(map, x, n).iter().rev().map(|&y| map.vertex_of(y)));
+    polyhedron_stream(map, d, walker)
+}
+
+/// The VTK polyhedron face stream of any volume (faces reversed to point outward).
+fn polyhedron_stream(map: &CMap3, d: Dart, walker: &mut OrbitWalker) -> (CellKind, Vec<u32>) {
+    let darts: Vec<Dart> = walker.collect(map, d, Orbit::Volume).to_vec();
+    let mut in_face = rustc_hash::FxHashSet::default();
+    let mut stream = vec![0u32];
+    for &x in &darts {
+        if in_face.insert(x) {
+            let n = face_len(map, x);
+            let c = cycle(map, x, n);
+            c.iter().skip(1).for_each(|&y| {
+                in_face.insert(y);
+            });
+            stream[0] += 1;
+            stream.push(n as u32);
+            stream.extend(c.iter().rev().map(|&y| map.vertex_of(y)));
+        }
     }
     (CellKind::Polyhedron, stream)
 }
@@ -121,36 +171,79 @@ fn standard_nodes(map: &CMap3, kind: CellKind, faces: &[(Dart, usize)]) -> Optio
         }
         CellKind::Polyhedron => return None,
     };
-    let mut sorted = nodes.clone();
-    sorted.sort_unstable();
-    sorted.dedup();
-    if sorted.len() != nodes.len() {
-        return None;
-    }
+    let distinct = nodes.iter().enumerate().all(|(i, v)| !nodes[..i].contains(v));
     // Every face of the table must be a face of the volume (as a vertex cycle).
-    let have: rustc_hash::FxHashSet<super::face_key::FaceKey> = faces
-        .iter()
-        .map(|&(x, n)| {
-            super::face_key::FaceKey::of(&cycle(map, x, n).iter().map(|&y| map.vertex_of(y)).collect::<Vec<_>>(), false)
+    let has_face = |f: &[usize]| {
+        faces.iter().filter(|g| g.1 == f.len()).any(|&(g, n)| {
+            let mut x = g;
+            (0..n).any(|_| {
+                let mut y = x;
+                x = map.next(x);
+                f.iter().all(|&k| {
+                    let ok = map.vertex_of(y) == nodes[k];
+                    y = map.next(y);
+                    ok
+                })
+            })
         })
-        .collect();
-    let ok = kind.face_table().iter().all(|f| {
-        let c: Vec<u32> = f.iter().map(|&k| nodes[k]).collect();
-        have.contains(&super::face_key::FaceKey::of(&c, false))
-    });
-    ok.then_some(nodes)
+    };
+    (distinct && kind.face_table().iter().all(|f| has_face(f))).then_some(nodes)
 }
 
 /// How many volumes of each kind the map holds.
+///
+/// Volumes are classified in parallel (rayon) once their representatives are known.
 pub fn count_cell_kinds(map: &CMap3) -> ExtractedKinds {
-    let mut kinds = ExtractedKinds::default();
-    if map.dimension() == 3 {
-        let mut walker = OrbitWalker::new();
-        for d in map.cells(Orbit::Volume) {
-            kinds.add(recognise_volume(map, d, &mut walker).0);
-        }
+    if map.dimension() != 3 {
+        return ExtractedKinds::default();
     }
-    kinds
+    let reps: Vec<Dart> = map.cells(Orbit::Volume).collect();
+    count_kinds_of(map, &reps)
+}
+
+/// Kinds of the volumes of the given representative darts (one per volume), classified
+/// in parallel.
+pub fn count_kinds_of(map: &CMap3, reps: &[Dart]) -> ExtractedKinds {
+    use rayon::prelude::*;
+    if map.dimension() != 3 {
+        return ExtractedKinds::default();
+    }
+    reps.par_chunks(4096)
+        .map(|chunk| {
+            let mut kinds = ExtractedKinds::default();
+            chunk.iter().for_each(|&d| kinds.add(classify_volume(map, d)));
+            kinds
+        })
+        .reduce(ExtractedKinds::default, |a, b| ExtractedKinds {
+            tet: a.tet + b.tet,
+            pyramid: a.pyramid + b.pyramid,
+            prism: a.prism + b.prism,
+            hex: a.hex + b.hex,
+            other: a.other + b.other,
+        })
+}
+
+/// The kind of the volume of `d` (as [`recognise_volume`], without building its node
+/// list or face stream).
+pub fn classify_volume(map: &CMap3, d: Dart) -> CellKind {
+    let Some(faces) = small_volume_faces(map, d) else { return CellKind::Polyhedron };
+    match guess_kind(&faces) {
+        Some(kind) if standard_nodes(map, kind, &faces).is_some() => kind,
+        _ => CellKind::Polyhedron,
+    }
+}
+
+/// The standard kind whose face counts match, if any.
+fn guess_kind(faces: &[(Dart, usize)]) -> Option<CellKind> {
+    let count = |k: usize| faces.iter().filter(|f| f.1 == k).count();
+    let darts: usize = faces.iter().map(|f| f.1).sum();
+    match (faces.len(), count(3), count(4), darts) {
+        (4, 4, 0, 12) => Some(CellKind::Tet),
+        (5, 4, 1, 16) => Some(CellKind::Pyramid),
+        (5, 2, 3, 18) => Some(CellKind::Prism),
+        (6, 0, 6, 24) => Some(CellKind::Hex),
+        _ => None,
+    }
 }
 
 /// Indexed cells of every volume of a volume map (labels kept when the map has them),

@@ -1,6 +1,6 @@
 //! Indexed meshes as files store them: points plus cells given by node indices.
 
-use crate::cmap::faces;
+use crate::cmap::Standard;
 
 /// Kind of a volume cell, with VTK node orders (GUIDE §3).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -48,13 +48,29 @@ impl CellKind {
         }
     }
 
-    /// Face table in map orientation for fixed-size kinds.
-    pub fn face_table(self) -> &'static [&'static [usize]] {
+    /// The standard cell of a fixed-size kind.
+    pub fn standard(self) -> Option<Standard> {
         match self {
-            CellKind::Tet => faces::TET,
-            CellKind::Pyramid => faces::PYRAMID,
-            CellKind::Prism => faces::PRISM,
-            CellKind::Hex => faces::HEX,
+            CellKind::Tet => Some(Standard::Tet),
+            CellKind::Pyramid => Some(Standard::Pyramid),
+            CellKind::Prism => Some(Standard::Prism),
+            CellKind::Hex => Some(Standard::Hex),
+            CellKind::Polyhedron => None,
+        }
+    }
+
+    /// Face table in map orientation for fixed-size kinds (empty for polyhedra).
+    pub fn face_table(self) -> &'static [&'static [usize]] {
+        self.standard().map_or(&[], Standard::faces)
+    }
+
+    /// A node order of the same cell with the opposite orientation.
+    pub fn flipped_order(self) -> &'static [usize] {
+        match self {
+            CellKind::Tet => &[0, 2, 1, 3],
+            CellKind::Pyramid => &[0, 3, 2, 1, 4],
+            CellKind::Prism => &[3, 4, 5, 0, 1, 2],
+            CellKind::Hex => &[4, 5, 6, 7, 0, 1, 2, 3],
             CellKind::Polyhedron => &[],
         }
     }
@@ -85,6 +101,10 @@ pub struct IndexedMesh {
     pub poly_conn: Vec<u32>,
     /// Things the reader skipped or repaired, for the user.
     pub warnings: Vec<String>,
+    /// Source line of each cell / polygon when the reader knows it (text formats), so
+    /// that builder errors can point into the file; empty otherwise.
+    pub cell_lines: Vec<u32>,
+    pub poly_lines: Vec<u32>,
 }
 
 impl IndexedMesh {

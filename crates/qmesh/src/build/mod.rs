@@ -4,22 +4,24 @@
 //! (matched by vertex cycles in a hash map); [`build_surface_map`] 2-sews polygons
 //! along opposite half-edges; [`extract`] goes back to indexed cells for writing.
 
+mod adjacency;
 mod error;
 mod extract;
-mod face_key;
 mod indexed;
 mod surface;
 mod volume;
 
-pub use error::BuildError;
-pub use extract::{ExtractedKinds, boundary_polygons, count_cell_kinds, extract, recognise_volume};
+pub use error::{BuildError, Subject};
+pub use extract::{
+    ExtractedKinds, boundary_polygons, classify_volume, count_cell_kinds, count_kinds_of, extract, recognise_volume,
+};
 pub use indexed::{CellKind, IndexedMesh};
 pub use surface::build_surface_map;
-pub use volume::{BuildOptions, BuildReport, build_volume_map};
+pub use volume::{BuildOptions, BuildReport, build_volume_map, build_volume_map_owned};
 
 use crate::cmap::CMap3;
 
 /// Builds a volume map when the mesh has volume cells, a surface map otherwise.
-pub fn build_map(mesh: &IndexedMesh, opts: &BuildOptions) -> Result<(CMap3, BuildReport), BuildError> {
-    if mesh.is_volume() { build_volume_map(mesh, opts) } else { build_surface_map(mesh) }
+pub fn build_map(mesh: IndexedMesh, opts: &BuildOptions) -> Result<(CMap3, BuildReport), BuildError> {
+    if mesh.is_volume() { build_volume_map_owned(mesh, opts) } else { build_surface_map(&mesh) }
 }

@@ -1,12 +1,10 @@
 //! Indexed volume cells → 3-map: one volume per cell, shared faces 3-sewn.
 
-use rustc_hash::FxHashMap;
-
+use super::adjacency::VertexCells;
 use super::error::BuildError;
-use super::face_key::FaceKey;
 use super::indexed::IndexedMesh;
 use crate::cmap::{CMap3, Dart, Orbit};
-use crate::geom::signed_volume_of_faces;
+use crate::geom::{signed_volume_of_faces, signed_volume_of_table};
 
 /// Options of [`build_volume_map`].
 #[derive(Clone, Copy, Debug, Default)]
@@ -24,123 +22,317 @@ pub struct BuildReport {
     pub flipped_cells: usize,
     /// Cells with zero volume.
     pub degenerate_cells: usize,
-    /// Vertices touched by cells that share no face or edge there (non-manifold), which
-    /// the map represents as several vertices.
+    /// Vertices touched by cells that share no face there (non-manifold), which the map
+    /// represents as several vertices.
     pub split_vertices: usize,
     /// Points that no cell uses.
     pub unreferenced_points: usize,
 }
 
-/// A face waiting for its partner: the cell it belongs to, its first dart, whether it is
-/// already matched.
-#[derive(Clone, Copy)]
-struct OpenFace {
-    cell: u32,
-    dart: Dart,
-    partner: Option<u32>,
+/// Where the darts of each cell are: standard cells are created in one contiguous block
+/// (the map is fresh), so their faces are found from the kind's layout; polyhedra keep
+/// the first dart of each face.
+struct CellDarts {
+    /// First dart of each cell.
+    first: Vec<u32>,
+    /// Node order actually used (the input order, or the flipped one).
+    flipped: Vec<bool>,
+    /// Polyhedra: cell → first darts of its faces.
+    poly_faces: rustc_hash::FxHashMap<u32, Vec<u32>>,
+}
+
+/// How a face of another cell relates to a face.
+enum FaceMatch {
+    /// Same vertex cycle, opposite direction: the dart to 3-sew with.
+    Opposite(Dart),
+    /// Same vertex cycle, same direction.
+    Same,
+    None,
+}
+
+fn dart(raw: u32) -> Dart {
+    Dart::from_raw(raw).expect("cell index holds live darts")
+}
+
+/// Whether the faces of `d` and `y` have the same vertex cycle in opposite directions,
+/// with y running target(d) → origin(d).
+fn opposite_cycles(map: &CMap3, d: Dart, y: Dart) -> bool {
+    let (mut a, mut b) = (d, y);
+    loop {
+        if map.vertex_of(map.next(a)) != map.vertex_of(b) || map.vertex_of(a) != map.vertex_of(map.next(b)) {
+            return false;
+        }
+        a = map.next(a);
+        b = map.prev(b);
+        if a == d || b == y {
+            return a == d && b == y;
+        }
+    }
+}
+
+/// Whether the faces of `d` and `z` have the same vertex cycle in the same direction,
+/// with z starting where d starts.
+fn same_cycles(map: &CMap3, d: Dart, z: Dart) -> bool {
+    let (mut a, mut b) = (d, z);
+    loop {
+        if map.vertex_of(a) != map.vertex_of(b) {
+            return false;
+        }
+        a = map.next(a);
+        b = map.next(b);
+        if a == d || b == z {
+            return a == d && b == z;
+        }
+    }
+}
+
+/// Compares the face of `d` with the face of `e` by their vertex cycles (any faces).
+fn compare_faces(map: &CMap3, d: Dart, e: Dart) -> FaceMatch {
+    let (origin, target) = (map.vertex_of(d), map.vertex_of(map.next(d)));
+    let mut x = e;
+    loop {
+        if map.vertex_of(x) == target && map.vertex_of(map.next(x)) == origin && opposite_cycles(map, d, x) {
+            return FaceMatch::Opposite(x);
+        }
+        if map.vertex_of(x) == origin && map.vertex_of(map.next(x)) == target && same_cycles(map, d, x) {
+            return FaceMatch::Same;
+        }
+        x = map.next(x);
+        if x == e {
+            return FaceMatch::None;
+        }
+    }
+}
+
+impl CellDarts {
+    /// The nodes of cell `c` in the order its darts were built with.
+    fn nodes(&self, mesh: &IndexedMesh, c: u32, buf: &mut [u32; 8]) -> usize {
+        let (kind, nodes) = mesh.cell(c as usize);
+        if self.flipped[c as usize] {
+            for (k, &from) in kind.flipped_order().iter().enumerate() {
+                buf[k] = nodes[from];
+            }
+        } else {
+            buf[..nodes.len()].copy_from_slice(nodes);
+        }
+        nodes.len()
+    }
+
+    /// First darts of the faces of cell `c`.
+    fn faces(&self, mesh: &IndexedMesh, c: u32) -> Vec<u32> {
+        match mesh.kinds[c as usize].standard() {
+            Some(k) => {
+                let l = k.layout();
+                l.face_start[..l.face_start.len() - 1].iter().map(|&s| self.first[c as usize] + s as u32).collect()
+            }
+            None => self.poly_faces[&c].clone(),
+        }
+    }
+
+    /// How the face of `d` (running a → b) relates to the faces of cell `c2`.
+    fn match_in(&self, map: &CMap3, mesh: &IndexedMesh, c2: u32, d: Dart) -> FaceMatch {
+        let (a, b) = (map.vertex_of(d), map.vertex_of(map.next(d)));
+        let Some(kind) = mesh.kinds[c2 as usize].standard() else {
+            return self.poly_faces[&c2]
+                .iter()
+                .map(|&g| compare_faces(map, d, dart(g)))
+                .find(|m| !matches!(m, FaceMatch::None))
+                .unwrap_or(FaceMatch::None);
+        };
+        let mut buf = [0u32; 8];
+        let n = self.nodes(mesh, c2, &mut buf);
+        let (Some(i), Some(j)) = (buf[..n].iter().position(|&v| v == a), buf[..n].iter().position(|&v| v == b)) else {
+            return FaceMatch::None;
+        };
+        let l = kind.layout();
+        let first = self.first[c2 as usize];
+        if let Some(k) = l.dart_of_edge(j, i) {
+            let y = dart(first + k as u32);
+            if opposite_cycles(map, d, y) {
+                return FaceMatch::Opposite(y);
+            }
+        }
+        if let Some(k) = l.dart_of_edge(i, j) {
+            let z = dart(first + k as u32);
+            if same_cycles(map, d, z) {
+                return FaceMatch::Same;
+            }
+        }
+        FaceMatch::None
+    }
 }
 
 /// Builds a volume map from the cells of `mesh`.
 ///
 /// # Errors
-/// A node index out of range, a cell that is not a closed manifold polyhedron, a face
-/// shared by more than two cells, or two cells meeting with inconsistent orientation.
+/// A node index out of range, a degenerate cell (repeated node), a polyhedron that is
+/// not closed and manifold, a face shared by more than two cells, or two cells meeting
+/// with inconsistent orientation.
 pub fn build_volume_map(mesh: &IndexedMesh, opts: &BuildOptions) -> Result<(CMap3, BuildReport), BuildError> {
+    build_with_points(mesh, mesh.points.clone(), opts)
+}
+
+/// As [`build_volume_map`], taking the mesh by value so that its points move into the
+/// map instead of being copied (lower peak memory when loading files).
+pub fn build_volume_map_owned(mut mesh: IndexedMesh, opts: &BuildOptions) -> Result<(CMap3, BuildReport), BuildError> {
+    let points = std::mem::take(&mut mesh.points);
+    build_with_points(&mesh, points, opts)
+}
+
+/// The builder proper; `mesh.points` is not read (the points are passed separately).
+fn build_with_points(
+    mesh: &IndexedMesh,
+    points: Vec<[f64; 3]>,
+    opts: &BuildOptions,
+) -> Result<(CMap3, BuildReport), BuildError> {
     if mesh.nb_cells() == 0 {
         return Err(BuildError::Empty);
     }
+    let np = points.len();
+    let adj = VertexCells::new(mesh, np)?;
     let mut report = BuildReport::default();
-    let est_darts: usize = (0..mesh.nb_cells()).map(|i| mesh.offsets[i + 1] - mesh.offsets[i]).sum::<usize>() * 3;
-    let mut map = CMap3::with_capacity(est_darts, mesh.points.len());
-    for &p in &mesh.points {
-        map.add_vertex(p);
-    }
+    let darts: usize = (0..mesh.nb_cells())
+        .map(|c| match mesh.kinds[c].standard() {
+            Some(k) => k.layout().origin.len(),
+            None => mesh.offsets[c + 1] - mesh.offsets[c],
+        })
+        .sum();
+    let mut map = CMap3::with_positions(points, darts);
     let labelled = mesh.labels.iter().any(|&l| l != mesh.labels[0]);
     if labelled {
         map.enable_labels();
     }
-    let mut used = vec![false; mesh.points.len()];
-    let mut open: FxHashMap<FaceKey, OpenFace> = FxHashMap::default();
-    open.reserve(est_darts / 6);
-    for cell in 0..mesh.nb_cells() {
-        let mut faces = mesh
-            .cell_faces(cell)
-            .ok_or_else(|| BuildError::BadCell { cell, reason: "malformed polyhedron face stream".into() })?;
-        for &v in faces.iter().flatten() {
-            if v as usize >= mesh.points.len() {
-                return Err(BuildError::IndexOutOfRange { cell, index: v, points: mesh.points.len() });
+    let mut cells = CellDarts {
+        first: Vec::with_capacity(mesh.nb_cells()),
+        flipped: vec![false; mesh.nb_cells()],
+        poly_faces: Default::default(),
+    };
+    let mut out = [0u32; 24];
+    for c in 0..mesh.nb_cells() {
+        let (kind, nodes) = mesh.cell(c);
+        let label = if labelled { mesh.labels[c] } else { 0 };
+        if let Some(std) = kind.standard() {
+            let table = std.faces();
+            let mut n = [0u32; 8];
+            n[..nodes.len()].copy_from_slice(nodes);
+            let vol = signed_volume_of_table(table, nodes, map.positions());
+            if vol < 0.0 {
+                report.inverted_cells += 1;
+                if opts.fix_orientation {
+                    for (k, &from) in kind.flipped_order().iter().enumerate() {
+                        n[k] = nodes[from];
+                    }
+                    cells.flipped[c] = true;
+                    report.flipped_cells += 1;
+                }
+            } else if vol == 0.0 {
+                report.degenerate_cells += 1;
             }
-            used[v as usize] = true;
-        }
-        let vol = signed_volume_of_faces(&faces, &mesh.points);
-        if vol < 0.0 {
-            report.inverted_cells += 1;
-            if opts.fix_orientation {
-                faces.iter_mut().for_each(|f| f.reverse());
-                report.flipped_cells += 1;
+            let count = map.make_standard_cell(std, &n, &mut out);
+            debug_assert!((0..count).all(|k| out[k] == out[0] + k as u32), "a fresh map allocates contiguously");
+            cells.first.push(out[0]);
+            if labelled {
+                out[..count].iter().for_each(|&d| map.set_label_of(dart(d), label));
             }
-        } else if vol == 0.0 {
-            report.degenerate_cells += 1;
-        }
-        let firsts =
-            map.make_polyhedron_faces(&faces).map_err(|e| BuildError::BadCell { cell, reason: e.to_string() })?;
-        if labelled {
-            let label = mesh.labels[cell];
-            for d in map.orbit(firsts[0], Orbit::Volume) {
-                map.set_label_of(d, label);
+        } else {
+            let mut fs = mesh
+                .cell_faces(c)
+                .ok_or_else(|| BuildError::BadCell { cell: c, reason: "malformed polyhedron face stream".into() })?;
+            let vol = signed_volume_of_faces(&fs, map.positions());
+            if vol < 0.0 {
+                report.inverted_cells += 1;
+                if opts.fix_orientation {
+                    fs.iter_mut().for_each(|f| f.reverse());
+                    report.flipped_cells += 1;
+                }
+            } else if vol == 0.0 {
+                report.degenerate_cells += 1;
             }
-        }
-        for (f, &d) in faces.iter().zip(&firsts) {
-            sew_or_register(&mut map, &mut open, cell, d, f)?;
+            let firsts =
+                map.make_polyhedron_faces(&fs).map_err(|e| BuildError::BadCell { cell: c, reason: e.to_string() })?;
+            cells.first.push(firsts[0].raw());
+            cells.poly_faces.insert(c as u32, firsts.iter().map(|d| d.raw()).collect());
+            if labelled {
+                for d in map.orbit(firsts[0], Orbit::Volume) {
+                    map.set_label_of(d, label);
+                }
+            }
         }
     }
-    report.unreferenced_points = used.iter().filter(|u| !**u).count();
+    sew_shared_faces(&mut map, mesh, &cells, &adj)?;
+    report.unreferenced_points = (0..np as u32).filter(|&v| adj.is_unused(v)).count();
+    drop((adj, cells));
     report.split_vertices = split_shared_vertex_ids(&mut map);
     Ok((map, report))
 }
 
-/// 3-sews face `f` (first dart `d`) to its registered opposite, or registers it.
-fn sew_or_register(
+/// 3-sews every face to the face of a neighbouring cell with the opposite cycle.
+fn sew_shared_faces(
     map: &mut CMap3,
-    open: &mut FxHashMap<FaceKey, OpenFace>,
-    cell: usize,
-    d: Dart,
-    f: &[u32],
+    mesh: &IndexedMesh,
+    cells: &CellDarts,
+    adj: &VertexCells,
 ) -> Result<(), BuildError> {
-    if let Some(other) = open.get_mut(&FaceKey::of(f, true)) {
-        if let Some(b) = other.partner {
-            let (a, b) = (other.cell as usize, b as usize);
-            return Err(BuildError::FaceSharedByMoreThanTwo { face: f.to_vec(), a, b, c: cell });
-        }
-        other.partner = Some(cell as u32);
-        let mut y = other.dart;
-        // Partner of d runs target(d) → origin(d): find the dart of the other face
-        // starting at target(d).
-        let target = map.vertex_of(map.next(d));
-        while map.vertex_of(y) != target {
-            y = map.next(y);
-        }
-        let mut x = d;
-        loop {
-            map.link(x, 3, y);
-            x = map.next(x);
-            y = map.prev(y);
-            if x == d {
-                break;
+    for c in 0..mesh.nb_cells() as u32 {
+        'face: for f in cells.faces(mesh, c) {
+            let d = dart(f);
+            if !map.is_free(d, 3) {
+                continue;
+            }
+            let (a, b) = (map.vertex_of(d), map.vertex_of(map.next(d)));
+            for c2 in adj.common(a, b).filter(|&c2| c2 != c) {
+                match cells.match_in(map, mesh, c2, d) {
+                    FaceMatch::None => {}
+                    FaceMatch::Same => {
+                        return Err(BuildError::InconsistentOrientation {
+                            face: cycle(map, d),
+                            a: c2.min(c) as usize,
+                            b: c2.max(c) as usize,
+                        });
+                    }
+                    FaceMatch::Opposite(y) => {
+                        if let Some(taken) = map.beta(y, 3) {
+                            let third = owner(map, mesh, cells, adj, (a, b), taken, [c, c2]);
+                            return Err(BuildError::FaceSharedByMoreThanTwo {
+                                face: cycle(map, d),
+                                a: c2 as usize,
+                                b: third,
+                                c: c as usize,
+                            });
+                        }
+                        map.link_faces3(d, y);
+                        continue 'face;
+                    }
+                }
             }
         }
-        return Ok(());
     }
-    let key = FaceKey::of(f, false);
-    if let Some(same) = open.get(&key) {
-        return Err(BuildError::InconsistentOrientation { face: f.to_vec(), a: same.cell as usize, b: cell });
-    }
-    open.insert(key, OpenFace { cell: cell as u32, dart: d, partner: None });
     Ok(())
 }
 
+fn cycle(map: &CMap3, d: Dart) -> Vec<u32> {
+    map.orbit(d, Orbit::HalfFace).iter().map(|&x| map.vertex_of(x)).collect()
+}
+
+/// The cell (other than the two named) whose face holds dart `taken` (error reporting).
+fn owner(
+    map: &CMap3,
+    mesh: &IndexedMesh,
+    cells: &CellDarts,
+    adj: &VertexCells,
+    (a, b): (u32, u32),
+    taken: Dart,
+    not: [u32; 2],
+) -> usize {
+    let volume = map.orbit(taken, Orbit::Volume);
+    adj.common(a, b)
+        .filter(|k| !not.contains(k))
+        .find(|&k| cells.faces(mesh, k).iter().any(|&f| volume.contains(&dart(f))))
+        .map_or(usize::MAX, |k| k as usize)
+}
+
 /// Gives a fresh vertex id to every vertex orbit whose id another orbit already uses
-/// (cells touching only at a vertex); returns how many were split.
+/// (cells touching only at a vertex or an edge); returns how many were split.
 fn split_shared_vertex_ids(map: &mut CMap3) -> usize {
     let reps: Vec<Dart> = map.cells(Orbit::Vertex).collect();
     let mut seen = vec![false; map.nb_vertex_ids()];

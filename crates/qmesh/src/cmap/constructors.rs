@@ -3,6 +3,8 @@
 //! Node orders are VTK's (GUIDE §3); faces are created with the map's orientation
 //! convention (β1 clockwise seen from outside, see [`CMap3`]).
 
+use std::sync::OnceLock;
+
 use super::dart::Dart;
 use super::error::MapError;
 use super::storage::CMap3;
@@ -18,6 +20,114 @@ pub mod faces {
     /// VTK hexahedron (type 12): base 0-1-2-3 has its normal toward 4-5-6-7.
     pub const HEX: &[&[usize]] =
         &[&[0, 1, 2, 3], &[1, 0, 4, 5], &[2, 1, 5, 6], &[3, 2, 6, 7], &[0, 3, 7, 4], &[7, 6, 5, 4]];
+}
+
+/// The standard cells, with VTK node orders.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Standard {
+    Tet,
+    Pyramid,
+    Prism,
+    Hex,
+}
+
+/// Where each dart of a standard cell starts and which darts are 2-sewn, computed
+/// once per kind from its face table.
+#[derive(Debug)]
+pub struct Layout {
+    /// Node (index into the cell's node list) at the origin of each dart.
+    pub origin: Vec<u8>,
+    /// `face_start[f]..face_start[f + 1]` are the darts of face f.
+    pub face_start: Vec<u8>,
+    /// Pairs of local darts that are 2-sewn.
+    pub pairs: Vec<(u8, u8)>,
+    /// `edge[i][j]` = 1 + the local dart running from node i to node j (0: none).
+    pub edge: [[u8; 8]; 8],
+    /// Local [β0, β1, β2] of each dart.
+    pub local_betas: Vec<[u8; 3]>,
+}
+
+impl Layout {
+    /// The local dart running from node `i` to node `j`, if the cell has that edge.
+    #[inline]
+    pub fn dart_of_edge(&self, i: usize, j: usize) -> Option<usize> {
+        (self.edge[i][j] as usize).checked_sub(1)
+    }
+
+    /// Number of darts of face `f`.
+    #[inline]
+    pub fn face_len(&self, f: usize) -> usize {
+        (self.face_start[f + 1] - self.face_start[f]) as usize
+    }
+}
+
+impl Standard {
+    pub const ALL: [Standard; 4] = [Standard::Tet, Standard::Pyramid, Standard::Prism, Standard::Hex];
+
+    /// Face cycles in map orientation as node indices.
+    pub fn faces(self) -> &'static [&'static [usize]] {
+        match self {
+            Standard::Tet => faces::TET,
+            Standard::Pyramid => faces::PYRAMID,
+            Standard::Prism => faces::PRISM,
+            Standard::Hex => faces::HEX,
+        }
+    }
+
+    /// Number of nodes.
+    pub fn nodes(self) -> usize {
+        match self {
+            Standard::Tet => 4,
+            Standard::Pyramid => 5,
+            Standard::Prism => 6,
+            Standard::Hex => 8,
+        }
+    }
+
+    /// The cached dart layout of this kind.
+    pub fn layout(self) -> &'static Layout {
+        static LAYOUTS: OnceLock<Vec<Layout>> = OnceLock::new();
+        let all = LAYOUTS.get_or_init(|| Standard::ALL.iter().map(|k| Layout::of(k.faces())).collect());
+        &all[self as usize]
+    }
+}
+
+impl Layout {
+    fn of(table: &[&[usize]]) -> Layout {
+        let mut origin = Vec::new();
+        let mut face_start = vec![0u8];
+        let mut edge = Vec::new();
+        for f in table {
+            for k in 0..f.len() {
+                edge.push((f[k], f[(k + 1) % f.len()]));
+                origin.push(f[k] as u8);
+            }
+            face_start.push(origin.len() as u8);
+        }
+        let mut pairs = Vec::new();
+        let mut by_edge = [[0u8; 8]; 8];
+        for (i, &(u, v)) in edge.iter().enumerate() {
+            by_edge[u][v] = i as u8 + 1;
+            let j = edge.iter().position(|&e| e == (v, u)).expect("standard cells are closed");
+            if i < j {
+                pairs.push((i as u8, j as u8));
+            }
+        }
+        let mut local_betas = vec![[0u8; 3]; origin.len()];
+        for f in 0..face_start.len() - 1 {
+            let (a, b) = (face_start[f], face_start[f + 1]);
+            for k in a..b {
+                let next = if k + 1 == b { a } else { k + 1 };
+                local_betas[k as usize][1] = next;
+                local_betas[next as usize][0] = k;
+            }
+        }
+        for &(i, j) in &pairs {
+            local_betas[i as usize][2] = j;
+            local_betas[j as usize][2] = i;
+        }
+        Layout { origin, face_start, pairs, edge: by_edge, local_betas }
+    }
 }
 
 impl CMap3 {
@@ -129,28 +239,58 @@ impl CMap3 {
         Ok(firsts)
     }
 
-    fn make_standard(&mut self, table: &[&[usize]], nodes: &[u32]) -> Dart {
-        let faces: Vec<Vec<u32>> = table.iter().map(|f| f.iter().map(|&k| nodes[k]).collect()).collect();
-        self.make_polyhedron(&faces).expect("standard cell tables are closed and manifold")
+    /// Creates a standard cell from its cached dart layout (no allocation) and returns
+    /// its darts in layout order: face by face, as listed in the kind's face table.
+    pub fn make_standard_cell(&mut self, kind: Standard, nodes: &[u32], out: &mut [u32; 24]) -> usize {
+        let l = kind.layout();
+        if self.free_darts.is_empty() {
+            // Fast path: append one contiguous block with all its links at once.
+            let base = self.append_darts(l.local_betas.iter().zip(&l.origin).map(|(b, &o)| (*b, nodes[o as usize])));
+            for (k, slot) in out.iter_mut().take(l.origin.len()).enumerate() {
+                *slot = base + k as u32;
+            }
+            return l.origin.len();
+        }
+        for (k, &node) in l.origin.iter().enumerate() {
+            out[k] = self.create_dart(nodes[node as usize]).raw();
+        }
+        let dart = |i: u32| Dart::from_raw(i).expect("created darts are not ε");
+        for f in 0..l.face_start.len() - 1 {
+            let (a, b) = (l.face_start[f] as usize, l.face_start[f + 1] as usize);
+            for k in a..b {
+                let next = if k + 1 == b { a } else { k + 1 };
+                self.link(dart(out[k]), 1, dart(out[next]));
+            }
+        }
+        for &(i, j) in &l.pairs {
+            self.link(dart(out[i as usize]), 2, dart(out[j as usize]));
+        }
+        l.origin.len()
+    }
+
+    fn make_standard(&mut self, kind: Standard, nodes: &[u32]) -> Dart {
+        let mut out = [0u32; 24];
+        self.make_standard_cell(kind, nodes, &mut out);
+        Dart::from_raw(out[0]).expect("created darts are not ε")
     }
 
     /// A tetrahedron on vertex ids in VTK order (12 darts). Returns the dart 0→1.
     pub fn make_tetrahedron(&mut self, n: [u32; 4]) -> Dart {
-        self.make_standard(faces::TET, &n)
+        self.make_standard(Standard::Tet, &n)
     }
 
     /// A pyramid on vertex ids in VTK order (16 darts). Returns the dart 0→1.
     pub fn make_pyramid(&mut self, n: [u32; 5]) -> Dart {
-        self.make_standard(faces::PYRAMID, &n)
+        self.make_standard(Standard::Pyramid, &n)
     }
 
     /// A prism (VTK wedge) on vertex ids in VTK order (18 darts). Returns the dart 0→2.
     pub fn make_prism(&mut self, n: [u32; 6]) -> Dart {
-        self.make_standard(faces::PRISM, &n)
+        self.make_standard(Standard::Prism, &n)
     }
 
     /// A hexahedron on vertex ids in VTK order (24 darts). Returns the dart 0→1.
     pub fn make_hexahedron(&mut self, n: [u32; 8]) -> Dart {
-        self.make_standard(faces::HEX, &n)
+        self.make_standard(Standard::Hex, &n)
     }
 }

@@ -1,6 +1,33 @@
 //! Cell counts, boundary, connected components and Euler characteristic.
 
-use super::orbit::Orbit;
+use super::bitset::BitSet;
+use super::dart::Dart;
+use super::orbit::{Orbit, walk_orbit};
+use super::validity::Violation;
+
+/// Result of [`CMap3::census`].
+#[derive(Clone, Debug, Default)]
+pub struct Census {
+    pub counts: CellCounts,
+    /// As [`CMap3::is_valid`].
+    pub violations: Vec<Violation>,
+    /// One dart per volume.
+    pub volume_reps: Vec<Dart>,
+}
+
+/// Result of [`CMap3::face_sweep`].
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct FaceSweep {
+    pub half_faces: usize,
+    pub sewn_half_faces: usize,
+}
+
+impl FaceSweep {
+    /// Faces of a valid map: two sewn half-faces make one face.
+    pub fn faces(&self) -> usize {
+        self.half_faces - self.sewn_half_faces / 2
+    }
+}
 use super::storage::CMap3;
 
 /// Number of cells of each dimension, as counted by [`CMap3::count_cells`].
@@ -12,6 +39,8 @@ pub struct CellCounts {
     pub faces: usize,
     pub volumes: usize,
     pub components: usize,
+    /// 3-free faces (the boundary of a volume map).
+    pub boundary_faces: usize,
 }
 
 impl CellCounts {
@@ -35,14 +64,60 @@ impl CMap3 {
     /// assert_eq!(m.euler_characteristic(), 1);
     /// ```
     pub fn count_cells(&self) -> CellCounts {
-        CellCounts {
+        self.census_parts(false).0
+    }
+
+    /// Counts, validity and one dart per volume in the fewest whole-map passes, run in
+    /// parallel: the vertex pass also checks vertex ids, the component walk also counts
+    /// volumes. The violations are those of [`is_valid`](Self::is_valid).
+    pub fn census(&self) -> Census {
+        let (counts, violations, volume_reps) = self.census_parts(true);
+        Census { counts, violations, volume_reps }
+    }
+
+    fn census_parts(&self, validate: bool) -> (CellCounts, Vec<Violation>, Vec<Dart>) {
+        let (((vertices, shared), edges), ((sweep, (components, reps)), local)) = rayon::join(
+            || rayon::join(|| self.vertex_census(), || self.cells(Orbit::Edge).count()),
+            || {
+                rayon::join(
+                    || rayon::join(|| self.face_sweep(), || self.components_and_volumes()),
+                    || if validate { self.local_violations_all() } else { Vec::new() },
+                )
+            },
+        );
+        let boundary_faces = sweep.half_faces - sweep.sewn_half_faces;
+        let counts = CellCounts {
             darts: self.nb_darts(),
-            vertices: self.cells(Orbit::Vertex).count(),
-            edges: self.cells(Orbit::Edge).count(),
-            faces: self.cells(Orbit::Face).count(),
-            volumes: self.cells(Orbit::Volume).count(),
-            components: self.cells(Orbit::Component).count(),
+            vertices,
+            edges,
+            faces: sweep.faces(),
+            volumes: reps.len(),
+            components,
+            boundary_faces,
+        };
+        let violations = if local.is_empty() { if validate { shared } else { Vec::new() } } else { local };
+        (counts, violations, reps)
+    }
+
+    /// Half-faces (β1 cycles) and how many of them are 3-sewn, in one sequential sweep.
+    pub fn face_sweep(&self) -> FaceSweep {
+        let mut seen = BitSet::with_len(self.dart_capacity());
+        let (mut half_faces, mut sewn) = (0, 0);
+        for d in self.darts() {
+            if seen.get(d.idx()) {
+                continue;
+            }
+            half_faces += 1;
+            sewn += usize::from(!self.is_free(d, 3));
+            let mut x = d;
+            while seen.insert(x.idx()) {
+                match self.beta(x, 1) {
+                    Some(n) => x = n,
+                    None => break,
+                }
+            }
         }
+        FaceSweep { half_faces, sewn_half_faces: sewn }
     }
 
     /// Euler characteristic (see [`CellCounts::euler_characteristic`]).
@@ -52,7 +127,8 @@ impl CMap3 {
 
     /// Faces lying on the boundary of a volume map (3-free faces).
     pub fn boundary_faces(&self) -> usize {
-        self.cells(Orbit::HalfFace).filter(|&d| self.is_free(d, 3)).count()
+        let s = self.face_sweep();
+        s.half_faces - s.sewn_half_faces
     }
 
     /// Boundary edges of a surface map (2-free darts).
@@ -60,8 +136,39 @@ impl CMap3 {
         self.darts().filter(|&d| self.is_free(d, 2)).count()
     }
 
-    /// Number of connected components.
+    /// Number of connected components, walked volume by volume: each volume is
+    /// finished (its darts are stored together) before crossing β3 to a neighbour, which
+    /// is several times faster than a dart-level walk on large meshes.
     pub fn connected_components(&self) -> usize {
-        self.cells(Orbit::Component).count()
+        self.components_and_volumes().0
+    }
+
+    /// Connected components and one dart per volume (the dart each volume was entered by).
+    fn components_and_volumes(&self) -> (usize, Vec<Dart>) {
+        let mut reps = Vec::new();
+        let mut seen = BitSet::with_len(self.dart_capacity());
+        let (mut entries, mut local) = (Vec::new(), Vec::new());
+        let mut components = 0;
+        for d in self.darts() {
+            if seen.get(d.idx()) {
+                continue;
+            }
+            components += 1;
+            entries.push(d.raw());
+            while let Some(e) = entries.pop() {
+                let e = Dart::from_raw(e).expect("entries hold no ε");
+                if seen.get(e.idx()) {
+                    continue;
+                }
+                reps.push(e);
+                walk_orbit(self, e, Orbit::Volume, &mut seen, &mut local, |x| {
+                    let p = self.beta_raw(x.raw(), 3);
+                    if p != 0 {
+                        entries.push(p);
+                    }
+                });
+            }
+        }
+        (components, reps)
     }
 }

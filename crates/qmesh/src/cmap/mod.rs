@@ -21,8 +21,8 @@ mod validity;
 
 pub use bitset::BitSet;
 pub use compact::Compaction;
-pub use constructors::faces;
-pub use counts::CellCounts;
+pub use constructors::{Layout, Standard, faces};
+pub use counts::{CellCounts, Census, FaceSweep};
 pub use dart::{Dart, raw_of};
 pub use error::MapError;
 pub use marks::Mark;

@@ -120,6 +120,21 @@ impl CMap3 {
         if !self.is_sewable3(d1, d2) {
             return Err(Self::not_sewable(3, d1, d2, "faces must be distinct, 3-free and of equal length"));
         }
+        self.link_faces3(d1, d2);
+        let mut x = d1;
+        loop {
+            self.harmonize_vertex(x);
+            x = self.next(x);
+            if x == d1 {
+                break;
+            }
+        }
+        Ok(())
+    }
+
+    /// Low-level 3-link of two whole faces (d1 ↔ d2, β1(d1) ↔ β0(d2), …) without checks
+    /// or vertex-id updates, for builders that already share vertex ids.
+    pub fn link_faces3(&mut self, d1: Dart, d2: Dart) {
         let (mut x, mut y) = (d1, d2);
         loop {
             self.link(x, 3, y);
@@ -129,14 +144,6 @@ impl CMap3 {
                 break;
             }
         }
-        loop {
-            self.harmonize_vertex(x);
-            x = self.next(x);
-            if x == d1 {
-                break;
-            }
-        }
-        Ok(())
     }
 
     /// Whether [`sew3`](Self::sew3) would accept `d1`, `d2`.

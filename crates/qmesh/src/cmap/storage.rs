@@ -70,6 +70,14 @@ impl CMap3 {
         }
     }
 
+    /// An empty volume map owning `positions` (vertex id i at `positions[i]`), with room
+    /// for `darts` darts.
+    pub fn with_positions(positions: Vec<[f64; 3]>, darts: usize) -> Self {
+        let mut m = Self::with_capacity(darts, 0);
+        m.positions = positions;
+        m
+    }
+
     /// 3 for a volume map (β3 may be free, β1 and β2 never), 2 for a surface map
     /// (β3 unused, β2 free on the boundary).
     pub fn dimension(&self) -> u8 {
@@ -247,6 +255,24 @@ impl CMap3 {
             l.push(0);
         }
         Dart::from_raw(i as u32).expect("index 0 is never pushed")
+    }
+
+    /// Appends a block of new darts given by local links (indices within the block) and
+    /// origin vertices; returns the raw index of the first one. β3 is free.
+    pub(super) fn append_darts(&mut self, block: impl ExactSizeIterator<Item = ([u8; 3], u32)>) -> u32 {
+        let base = self.betas.len() as u32;
+        assert!((base as usize) + block.len() < u32::MAX as usize, "too many darts for u32 indices");
+        let n = block.len();
+        for (b, v) in block {
+            self.betas.push([base + b[0] as u32, base + b[1] as u32, base + b[2] as u32, 0]);
+            self.vertex.push(v);
+            self.marks.push(0);
+        }
+        if let Some(l) = &mut self.labels {
+            l.resize(l.len() + n, 0);
+        }
+        self.live += n;
+        base
     }
 
     /// Deletes d (low level): its slot goes to the free list. Darts still pointing at

@@ -2,8 +2,6 @@
 
 use std::fmt;
 
-use rustc_hash::FxHashMap;
-
 use super::dart::Dart;
 use super::orbit::Orbit;
 use super::storage::CMap3;
@@ -67,13 +65,54 @@ impl CMap3 {
     /// its inverse; β2, β3 and β1∘β3 involutions without fixed points; β1 never free,
     /// β2 never free in volume maps; one vertex id per vertex orbit and one orbit per
     /// id; no live dart pointing at a deleted one.
+    ///
+    /// The local checks run in parallel over chunks of darts (rayon); the result is the
+    /// same, in dart order, whatever the number of threads.
     pub fn is_valid(&self) -> Vec<Violation> {
+        let mut out = self.local_violations_all();
+        if out.is_empty() {
+            out = self.vertex_census().1;
+        }
+        out
+    }
+
+    /// The local checks over all darts, in parallel chunks, in dart order.
+    pub(super) fn local_violations_all(&self) -> Vec<Violation> {
+        use rayon::prelude::*;
+        const CHUNK: usize = 1 << 16;
+        let n = self.dart_capacity();
+        (0..n.div_ceil(CHUNK))
+            .into_par_iter()
+            .map(|k| self.local_violations(k * CHUNK..((k + 1) * CHUNK).min(n)))
+            .collect::<Vec<_>>()
+            .concat()
+    }
+
+    /// Number of vertex orbits, and a violation for every orbit whose vertex id another
+    /// orbit already uses (one vertex id per orbit is only meaningful once the local
+    /// checks pass).
+    pub(super) fn vertex_census(&self) -> (usize, Vec<Violation>) {
+        let mut owner = vec![0u32; self.positions.len()];
+        let mut out = Vec::new();
+        let mut count = 0;
+        for d in self.cells(Orbit::Vertex) {
+            count += 1;
+            let Some(slot) = owner.get_mut(self.vertex_of(d) as usize) else { continue };
+            match *slot {
+                0 => *slot = d.raw(),
+                other => out.push(Violation::VertexIdShared { id: self.vertex_of(d), dart: d.raw(), other }),
+            }
+        }
+        (count, out)
+    }
+
+    /// The checks that only look at a dart and its neighbours, for raw indices in `range`.
+    fn local_violations(&self, range: std::ops::Range<usize>) -> Vec<Violation> {
         let mut out = Vec::new();
         let n = self.dart_capacity() as u32;
         let live = |x: u32| x != 0 && x < n && Dart::from_raw(x).is_some_and(|d| self.is_live(d));
-        for d in self.darts() {
-            let r = d.raw();
-            let b = self.betas[d.idx()];
+        for r in range.filter(|&i| i > 0).map(|i| i as u32).filter(|&i| live(i)) {
+            let b = self.betas[r as usize];
             let mut dangling = false;
             for (i, &t) in b.iter().enumerate() {
                 if t != 0 && !live(t) {
@@ -107,36 +146,21 @@ impl CMap3 {
                     out.push(Violation::NotInvolution { dart: r, i });
                 }
             }
-            if b[3] != 0 && b[1] != 0 {
-                let lhs = self.beta_raw(b[1], 3);
-                let rhs = self.beta_raw(b[3], 0);
-                if lhs != rhs {
-                    out.push(Violation::Beta13NotInvolution { dart: r });
-                }
+            if b[3] != 0 && b[1] != 0 && self.beta_raw(b[1], 3) != self.beta_raw(b[3], 0) {
+                out.push(Violation::Beta13NotInvolution { dart: r });
             }
-            let v = self.vertex[d.idx()];
+            let v = self.vertex[r as usize];
             if v as usize >= self.positions.len() {
                 out.push(Violation::VertexIdOutOfRange { dart: r, id: v });
                 continue;
             }
-            // Local vertex-orbit checks: β2(d) and β3(d) start where β1(d) starts.
-            if b[1] != 0 && live(b[1]) {
+            // β2(d) and β3(d) start where β1(d) starts: vertex ids are uniform per orbit.
+            if b[1] != 0 {
                 let target = self.vertex[b[1] as usize];
                 for i in [2, 3] {
                     if b[i] != 0 && self.vertex[b[i] as usize] != target {
                         out.push(Violation::VertexIdMismatch { dart: b[i], other: b[1] });
                     }
-                }
-            }
-        }
-        if out.is_empty() {
-            let mut owner: FxHashMap<u32, u32> = FxHashMap::default();
-            for d in self.cells(Orbit::Vertex) {
-                let id = self.vertex_of(d);
-                if let Some(&other) = owner.get(&id) {
-                    out.push(Violation::VertexIdShared { id, dart: d.raw(), other });
-                } else {
-                    owner.insert(id, d.raw());
                 }
             }
         }

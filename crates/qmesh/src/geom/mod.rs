@@ -2,7 +2,7 @@
 
 mod volume;
 
-pub use volume::{signed_volume_of_faces, signed_volume_of_map_volume};
+pub use volume::{signed_volume_of_faces, signed_volume_of_map_volume, signed_volume_of_table};
 
 /// a − b.
 #[inline]

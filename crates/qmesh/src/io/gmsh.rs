@@ -49,17 +49,17 @@ impl NodeTags {
 /// Collected elements before choosing the highest dimension.
 #[derive(Default)]
 struct Elements {
-    volume: Vec<(CellKind, Vec<u32>, i32)>,
-    surface: Vec<Vec<u32>>,
+    volume: Vec<(CellKind, Vec<u32>, i32, u32)>,
+    surface: Vec<(Vec<u32>, u32)>,
     lower: usize,
     unsupported: usize,
 }
 
 impl Elements {
-    fn push(&mut self, t: i64, nodes: Vec<u32>, label: i32) {
+    fn push(&mut self, t: i64, nodes: Vec<u32>, label: i32, line: u32) {
         match element(t) {
-            Some((_, Some(k), _)) => self.volume.push((k, nodes, label)),
-            Some((_, None, 2)) => self.surface.push(nodes),
+            Some((_, Some(k), _)) => self.volume.push((k, nodes, label, line)),
+            Some((_, None, 2)) => self.surface.push((nodes, line)),
             Some(_) => self.lower += 1,
             None => self.unsupported += 1,
         }
@@ -113,10 +113,14 @@ pub fn read(path: &Path, data: &[u8]) -> IoResult<IndexedMesh> {
         }
     }
     if els.volume.is_empty() {
-        els.surface.iter().for_each(|p| mesh.push_polygon(p));
+        for (p, line) in &els.surface {
+            mesh.push_polygon(p);
+            mesh.poly_lines.push(*line);
+        }
     } else {
-        for (k, n, l) in &els.volume {
+        for (k, n, l, line) in &els.volume {
             mesh.push_cell(*k, n, Some(*l));
+            mesh.cell_lines.push(*line);
         }
         els.lower += els.surface.len();
     }
@@ -189,7 +193,7 @@ fn elements_v2(lx: &mut Lexer<'_>, tags: &NodeTags, els: &mut Elements) -> IoRes
             element(t).ok_or_else(|| lx.err(format!("element type {t} is not supported (linear types 1-7, 15)")))?;
         let nodes = node_list(lx, tags, k)?;
         let label = etags.get(1).or(etags.first()).copied().unwrap_or(0) as i32;
-        els.push(t, nodes, label);
+        els.push(t, nodes, label, lx.line());
     }
     lx.expect_word("$EndElements")
 }
@@ -197,7 +201,7 @@ fn elements_v2(lx: &mut Lexer<'_>, tags: &NodeTags, els: &mut Elements) -> IoRes
 fn node_list(lx: &mut Lexer<'_>, tags: &NodeTags, k: usize) -> IoResult<Vec<u32>> {
     let mut out = Vec::with_capacity(k);
     for _ in 0..k {
-        let t: i64 = lx.parse("a node tag")?;
+        let t = lx.int("a node tag")?;
         out.push(tags.get(lx, t)?);
     }
     Ok(out)
@@ -218,7 +222,7 @@ fn elements_v4(lx: &mut Lexer<'_>, tags: &NodeTags, els: &mut Elements) -> IoRes
         for _ in 0..n {
             let _id: i64 = lx.parse("an element tag")?;
             let nodes = node_list(lx, tags, k)?;
-            els.push(t, nodes, entity as i32);
+            els.push(t, nodes, entity as i32, lx.line());
         }
     }
     lx.expect_word("$EndElements")

@@ -27,6 +27,11 @@ impl<'a> Lexer<'a> {
         self.path
     }
 
+    /// Line of the last token read.
+    pub fn line(&self) -> u32 {
+        self.tok_line as u32
+    }
+
     /// Error at the line of the last token read.
     pub fn err(&self, msg: impl Into<String>) -> IoError {
         IoError::Parse { path: self.path.to_path_buf(), at: Location::Line(self.tok_line), msg: msg.into() }
@@ -102,6 +107,36 @@ impl<'a> Lexer<'a> {
         if t.eq_ignore_ascii_case(word) { Ok(()) } else { Err(self.err(format!("expected '{word}', found '{t}'"))) }
     }
 
+    /// The next token as an integer, parsed straight from the bytes (hot path of every
+    /// connectivity list).
+    pub fn int(&mut self, what: &str) -> Result<i64, IoError> {
+        self.skip_ws();
+        self.tok_line = self.line;
+        let start = self.pos;
+        let d = self.data;
+        let mut i = start;
+        let neg = i < d.len() && (d[i] == b'-' || d[i] == b'+');
+        let sign = if neg && d[i] == b'-' { -1 } else { 1 };
+        if neg {
+            i += 1;
+        }
+        let digits = i;
+        let mut v: i64 = 0;
+        while i < d.len() && d[i].is_ascii_digit() {
+            v = match v.checked_mul(10).and_then(|v| v.checked_add((d[i] - b'0') as i64)) {
+                Some(v) => v,
+                None => break,
+            };
+            i += 1;
+        }
+        if i > digits && (i == d.len() || d[i].is_ascii_whitespace()) {
+            self.pos = i;
+            return Ok(sign * v);
+        }
+        // Not a plain integer: take the slow path for the message.
+        self.parse::<i64>(what)
+    }
+
     /// The next token parsed as `T`.
     pub fn parse<T: FromStr>(&mut self, what: &str) -> Result<T, IoError> {
         let t = self.expect(what)?;
@@ -143,7 +178,7 @@ impl<'a> Lexer<'a> {
 
     /// A node index: an integer in `0..limit` after subtracting `base` (1 for 1-based formats).
     pub fn index(&mut self, base: i64, limit: usize, what: &str) -> Result<u32, IoError> {
-        let v: i64 = self.parse(what)?;
+        let v = self.int(what)?;
         let i = v - base;
         if i < 0 || i as u128 >= limit as u128 {
             let (lo, hi) = (base, limit as i64 - 1 + base);

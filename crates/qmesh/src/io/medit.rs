@@ -25,7 +25,7 @@ pub fn read(path: &Path, data: &[u8]) -> IoResult<IndexedMesh> {
     let mut mesh = IndexedMesh::new();
     let mut dim = 3usize;
     let mut saw_header = false;
-    let mut polygons: Vec<(Vec<u32>, i32)> = Vec::new();
+    let mut polygons: Vec<(Vec<u32>, u32)> = Vec::new();
     let mut skipped = 0usize;
     while let Some(kw) = lx.token() {
         match kw {
@@ -49,7 +49,7 @@ pub fn read(path: &Path, data: &[u8]) -> IoResult<IndexedMesh> {
                     let x = lx.f64("an x coordinate")?;
                     let y = lx.f64("a y coordinate")?;
                     let z = if dim == 3 { lx.f64("a z coordinate")? } else { 0.0 };
-                    lx.parse::<i64>("a vertex reference (integer)")?;
+                    lx.int("a vertex reference (integer)")?;
                     mesh.points.push([x, y, z]);
                 }
             }
@@ -63,12 +63,15 @@ pub fn read(path: &Path, data: &[u8]) -> IoResult<IndexedMesh> {
                         for slot in nodes.iter_mut() {
                             *slot = lx.index(1, np, "vertex index")?;
                         }
-                        let r: i64 = lx.parse("an element reference (integer)")?;
+                        let r = lx.int("an element reference (integer)")?;
                         let r =
                             i32::try_from(r).map_err(|_| lx.err(format!("reference {r} does not fit in 32 bits")))?;
                         match kind {
-                            Some(kind) => mesh.push_cell(kind, &nodes, Some(r)),
-                            None => polygons.push((nodes.clone(), r)),
+                            Some(kind) => {
+                                mesh.push_cell(kind, &nodes, Some(r));
+                                mesh.cell_lines.push(lx.line());
+                            }
+                            None => polygons.push((nodes.clone(), lx.line())),
                         }
                     }
                 } else if kw.starts_with(|c: char| c.is_ascii_alphabetic()) {
@@ -90,8 +93,9 @@ pub fn read(path: &Path, data: &[u8]) -> IoResult<IndexedMesh> {
             mesh.warnings.push(format!("skipped {} boundary triangles/quadrilaterals (volume mesh)", polygons.len()));
         }
     } else {
-        for (p, _) in &polygons {
+        for (p, line) in &polygons {
             mesh.push_polygon(p);
+            mesh.poly_lines.push(*line);
         }
     }
     if skipped > 0 {

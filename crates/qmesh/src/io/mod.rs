@@ -23,7 +23,9 @@ use std::time::Instant;
 pub use atomic::{temp_path, write_atomically};
 pub use error::{IoError, IoResult, Location};
 
-use crate::build::{BuildOptions, BuildReport, IndexedMesh, boundary_polygons, build_map, extract};
+use crate::build::{
+    BuildError, BuildOptions, BuildReport, IndexedMesh, Subject, boundary_polygons, build_map, extract,
+};
 use crate::cmap::CMap3;
 
 /// A mesh file format.
@@ -151,12 +153,35 @@ pub fn load_map(path: &Path, forced: Option<Format>, opts: &BuildOptions) -> IoR
     let t1 = Instant::now();
     let (map, report, warnings) = match loaded {
         Loaded::Map(m) => (m, BuildReport::default(), Vec::new()),
-        Loaded::Indexed(mesh) => {
-            let (m, r) = build_map(&mesh, opts).map_err(|cause| IoError::Build { path: path.into(), cause })?;
-            (m, r, mesh.warnings)
+        Loaded::Indexed(mut mesh) => {
+            let warnings = std::mem::take(&mut mesh.warnings);
+            let lines = (std::mem::take(&mut mesh.cell_lines), std::mem::take(&mut mesh.poly_lines));
+            let (m, r) = build_map(mesh, opts).map_err(|cause| locate_build_error(path, cause, &lines))?;
+            (m, r, warnings)
         }
     };
     Ok(LoadedMap { map, report, warnings, read_seconds, build_seconds: t1.elapsed().as_secs_f64() })
+}
+
+/// A builder error, pointed at the source line of the cell it names last when the
+/// reader recorded lines (the other named cells' lines are listed in the message).
+fn locate_build_error(path: &Path, cause: BuildError, (cells, polys): &(Vec<u32>, Vec<u32>)) -> IoError {
+    let line_of = |s: &Subject| match *s {
+        Subject::Cell(c) => cells.get(c).copied(),
+        Subject::Polygon(p) => polys.get(p).copied(),
+    };
+    let lines: Vec<u32> = cause.subjects().iter().filter_map(line_of).collect();
+    match lines.last() {
+        Some(&at) => {
+            let also = if lines.len() > 1 {
+                format!(" (lines {})", lines.iter().map(|l| l.to_string()).collect::<Vec<_>>().join(", "))
+            } else {
+                String::new()
+            };
+            IoError::Parse { path: path.into(), at: Location::Line(at as usize), msg: format!("{cause}{also}") }
+        }
+        None => IoError::Build { path: path.into(), cause },
+    }
 }
 
 /// Options of writers.

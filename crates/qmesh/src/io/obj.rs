@@ -37,6 +37,7 @@ pub fn read(path: &Path, data: &[u8]) -> IoResult<IndexedMesh> {
                     return Err(lx.err(format!("expected at least 3 vertices in a face, found {}", poly.len())));
                 }
                 mesh.push_polygon(&poly);
+                mesh.poly_lines.push(lx.line());
             }
             _ => {
                 lx.rest_of_line();

@@ -38,6 +38,7 @@ pub fn read(path: &Path, data: &[u8]) -> IoResult<IndexedMesh> {
             poly.push(lx.index(0, nv, "vertex index")?);
         }
         mesh.push_polygon(&poly);
+        mesh.poly_lines.push(lx.line());
         lx.rest_of_line();
     }
     Ok(mesh)

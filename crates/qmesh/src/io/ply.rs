@@ -175,6 +175,9 @@ pub fn read(path: &Path, data: &[u8]) -> IoResult<IndexedMesh> {
                     );
                 }
                 mesh.push_polygon(&poly);
+                if enc == Encoding::Ascii {
+                    mesh.poly_lines.push(lx.line());
+                }
             }
         }
         if el.name == "vertex" {

@@ -14,6 +14,14 @@ use crate::build::{CellKind, IndexedMesh};
 pub const LABEL_ARRAYS: &[&str] =
     &["CellEntityIds", "gmsh:physical", "gmsh:geometrical", "medit:ref", "label", "labels", "MaterialIds"];
 
+/// A cell list as read: offsets into the flat connectivity, and the source line of
+/// each cell when known (ASCII legacy layout).
+pub(super) struct CellList {
+    pub offsets: Vec<usize>,
+    pub conn: Vec<i64>,
+    pub lines: Vec<u32>,
+}
+
 struct Reader<'a> {
     lx: Lexer<'a>,
     binary: bool,
@@ -77,7 +85,7 @@ impl<'a> Reader<'a> {
             self.lx.check_count(n as i64, what, 2)?;
             let mut out = Vec::with_capacity(n);
             for _ in 0..n {
-                out.push(self.lx.parse::<i64>(&format!("{what} (an integer)"))?);
+                out.push(self.lx.int(what)?);
             }
             return Ok(out);
         }
@@ -169,7 +177,7 @@ impl<'a> Reader<'a> {
     }
 
     /// Cell connectivity as (offsets, flat ids), legacy or 5.x layout.
-    fn cells(&mut self, np: usize) -> IoResult<(Vec<usize>, Vec<i64>)> {
+    fn cells(&mut self, np: usize) -> IoResult<CellList> {
         let n = self.lx.count("cells", 2)?;
         let size: i64 = self.lx.parse("the size of the cell list")?;
         let size = self.lx.check_count(size, "cell list entries", if self.binary { 4 } else { 2 })?;
@@ -192,7 +200,7 @@ impl<'a> Reader<'a> {
             if offs.first().is_some_and(|&o| o != 0) {
                 return Err(self.lx.err("the first cell offset must be 0"));
             }
-            return Ok((offs, conn));
+            return Ok(CellList { offsets: offs, conn, lines: Vec::new() });
         }
         if !self.binary {
             return self.ascii_cells(n, size, np);
@@ -216,24 +224,26 @@ impl<'a> Reader<'a> {
                 .lx
                 .err(format!("cell list size {size} does not match the {n} cells it holds ({k} entries)")));
         }
-        Ok((offs, conn))
+        Ok(CellList { offsets: offs, conn, lines: Vec::new() })
     }
 }
 
 impl Reader<'_> {
     /// ASCII `CELLS n size` list, cell by cell, so that an error names its line.
-    fn ascii_cells(&mut self, n: usize, size: usize, np: usize) -> IoResult<(Vec<usize>, Vec<i64>)> {
+    fn ascii_cells(&mut self, n: usize, size: usize, np: usize) -> IoResult<CellList> {
+        let mut lines = Vec::with_capacity(n);
         let mut offs = Vec::with_capacity(n + 1);
         let mut conn = Vec::with_capacity(size.saturating_sub(n));
         offs.push(0);
         let mut used = 0usize;
         for c in 0..n {
-            let m: i64 = self.lx.parse(&format!("the node count of cell {c}"))?;
+            let m = self.lx.int("the node count of a cell")?;
+            lines.push(self.lx.line());
             if m < 0 || used + 1 + m as usize > size {
                 return Err(self.lx.err(format!("cell {c} declares {m} nodes, beyond the declared list size {size}")));
             }
             for _ in 0..m {
-                let v: i64 = self.lx.parse(&format!("a point index of cell {c}"))?;
+                let v = self.lx.int("a point index")?;
                 if v < 0 || v as usize >= np {
                     return Err(self
                         .lx
@@ -249,7 +259,7 @@ impl Reader<'_> {
                 .lx
                 .err(format!("cell list size {size} does not match the {n} cells it holds ({used} entries)")));
         }
-        Ok((offs, conn))
+        Ok(CellList { offsets: offs, conn, lines })
     }
 }
 
@@ -277,8 +287,8 @@ pub fn read(path: &Path, data: &[u8]) -> IoResult<IndexedMesh> {
     }
     let mut r = Reader { lx, binary };
     let mut points: Vec<[f64; 3]> = Vec::new();
-    let mut cells: Option<(Vec<usize>, Vec<i64>)> = None;
-    let mut polys: Vec<(Vec<usize>, Vec<i64>)> = Vec::new();
+    let mut cells: Option<CellList> = None;
+    let mut polys: Vec<CellList> = Vec::new();
     let mut types: Option<Vec<i64>> = None;
     let mut labels: Option<Vec<i64>> = None;
     let mut tuples = 0usize;
@@ -328,9 +338,9 @@ pub fn read(path: &Path, data: &[u8]) -> IoResult<IndexedMesh> {
 pub(super) fn assemble(
     err: &dyn Fn(String) -> IoError,
     points: Vec<[f64; 3]>,
-    cells: Option<(Vec<usize>, Vec<i64>)>,
+    cells: Option<CellList>,
     types: Option<Vec<i64>>,
-    polys: Vec<(Vec<usize>, Vec<i64>)>,
+    polys: Vec<CellList>,
     labels: Option<Vec<i64>>,
 ) -> IoResult<IndexedMesh> {
     let mut mesh = IndexedMesh::new();
@@ -343,9 +353,9 @@ pub(super) fn assemble(
             Ok(v as u32)
         }
     };
-    let mut surface: Vec<Vec<u32>> = Vec::new();
+    let mut surface: Vec<(Vec<u32>, Option<u32>)> = Vec::new();
     let (mut lower, mut hex_as_tet, mut unsupported) = (0usize, 0usize, 0usize);
-    if let Some((offs, conn)) = &cells {
+    if let Some(CellList { offsets: offs, conn, lines }) = &cells {
         let n = offs.len() - 1;
         let types = types.as_ref().ok_or_else(|| err("expected a CELL_TYPES section after CELLS".into()))?;
         if types.len() != n {
@@ -366,6 +376,7 @@ pub(super) fn assemble(
                 Some(CellKind::Polyhedron) => {
                     let stream = polyhedron_stream(raw, c, &idx, err)?;
                     mesh.push_cell(CellKind::Polyhedron, &stream, label_of(&labels, c));
+                    mesh.cell_lines.extend(lines.get(c));
                 }
                 Some(kind) => {
                     let need = kind.nodes().unwrap_or(0);
@@ -374,10 +385,14 @@ pub(super) fn assemble(
                     }
                     let nodes = raw.iter().map(|&v| idx(v, c)).collect::<IoResult<Vec<u32>>>()?;
                     mesh.push_cell(kind, &nodes, label_of(&labels, c));
+                    mesh.cell_lines.extend(lines.get(c));
                 }
                 None => match t {
                     5 | 7 | 9 => {
-                        surface.push(raw.iter().map(|&v| idx(v, c)).collect::<IoResult<Vec<u32>>>()?);
+                        surface.push((
+                            raw.iter().map(|&v| idx(v, c)).collect::<IoResult<Vec<u32>>>()?,
+                            lines.get(c).copied(),
+                        ));
                     }
                     1..=4 => lower += 1,
                     _ => unsupported += 1,
@@ -385,9 +400,10 @@ pub(super) fn assemble(
             }
         }
     }
-    for (offs, conn) in &polys {
+    for CellList { offsets: offs, conn, lines } in &polys {
         for c in 0..offs.len() - 1 {
-            surface.push(conn[offs[c]..offs[c + 1]].iter().map(|&v| idx(v, c)).collect::<IoResult<Vec<u32>>>()?);
+            let p = conn[offs[c]..offs[c + 1]].iter().map(|&v| idx(v, c)).collect::<IoResult<Vec<u32>>>()?;
+            surface.push((p, lines.get(c).copied()));
         }
     }
     if hex_as_tet > 0 {
@@ -399,7 +415,10 @@ pub(super) fn assemble(
     if mesh.is_volume() {
         lower += surface.len();
     } else {
-        surface.iter().for_each(|p| mesh.push_polygon(p));
+        for (p, line) in &surface {
+            mesh.push_polygon(p);
+            mesh.poly_lines.extend(line);
+        }
     }
     if lower > 0 {
         mesh.warnings.push(format!("skipped {lower} lower-dimensional cells (points, lines, polygons)"));

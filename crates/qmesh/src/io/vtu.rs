@@ -10,10 +10,10 @@ use vtkio::model::{
 };
 
 use super::error::{IoError, IoResult};
-use super::vtk_legacy::{LABEL_ARRAYS, assemble};
+use super::vtk_legacy::{CellList, LABEL_ARRAYS, assemble};
 use crate::build::{CellKind, IndexedMesh};
 
-fn flat_to_offsets(num_cells: u32, flat: &[u32]) -> Option<(Vec<usize>, Vec<i64>)> {
+fn flat_to_offsets(num_cells: u32, flat: &[u32]) -> Option<CellList> {
     let mut offs = vec![0usize];
     let mut conn = Vec::with_capacity(flat.len());
     let mut k = 0usize;
@@ -23,7 +23,7 @@ fn flat_to_offsets(num_cells: u32, flat: &[u32]) -> Option<(Vec<usize>, Vec<i64>
         offs.push(conn.len());
         k += 1 + m;
     }
-    Some((offs, conn))
+    Some(CellList { offsets: offs, conn, lines: Vec::new() })
 }
 
 /// Parses a `.vtu` file (inline or appended data, ASCII, base64 or raw, compressed or not).
