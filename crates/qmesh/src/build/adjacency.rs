@@ -50,6 +50,12 @@ impl VertexCells {
         self.of(a).iter().copied().filter(move |c| other.binary_search(c).is_ok())
     }
 
+    /// Cells using `a`, `b` and `c` (the candidates to share a face through them).
+    pub fn common3(&self, a: u32, b: u32, c: u32) -> impl Iterator<Item = u32> + '_ {
+        let (lb, lc) = (self.of(b), self.of(c));
+        self.of(a).iter().copied().filter(move |k| lb.binary_search(k).is_ok() && lc.binary_search(k).is_ok())
+    }
+
     /// Whether no point is used by any cell.
     pub fn is_unused(&self, v: u32) -> bool {
         self.of(v).is_empty()

@@ -280,7 +280,8 @@ fn sew_shared_faces(
                 continue;
             }
             let (a, b) = (map.vertex_of(d), map.vertex_of(map.next(d)));
-            for c2 in adj.common(a, b).filter(|&c2| c2 != c) {
+            let third = map.vertex_of(map.next(map.next(d)));
+            for c2 in adj.common3(a, b, third).filter(|&c2| c2 != c) {
                 match cells.match_in(map, mesh, c2, d) {
                     FaceMatch::None => {}
                     FaceMatch::Same => {
