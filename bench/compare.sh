@@ -3,6 +3,9 @@
 # make_hexahedron/make_tetrahedron per cell, sew3_same_facets, count_all_cells, is_valid)
 # on armadillo_out.mesh and a generated 50³ hex grid. Installs what it needs.
 # usage: bench/compare.sh [RUNS]   (prints a Markdown table for BENCHMARKS.md)
+# Times are medians of RUNS whole-process runs, taken in turn in the same period; peak
+# RSS is the largest seen (wait4). qmesh runs once with its default thread pool (2 on
+# the CI machine) and once with RAYON_NUM_THREADS=1; the CGAL program is sequential.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 RUNS=${1:-3}
@@ -20,14 +23,17 @@ $Q generate grid --size 50 -o "$WORK/grid50.vtk" >&2
 echo "| input | tool | darts | volumes | valid | time (s) | peak RSS (MB) | time ratio CGAL/qmesh | memory ratio CGAL/qmesh |"
 echo "|---|---|---|---|---|---|---|---|---|"
 for input in "$DATA/hex/armadillo_out.mesh" "$WORK/grid50.vtk"; do
-  python3 bench/measure.py "$RUNS" qmesh -- "$Q" info "$input" --json --- cgal -- "$WORK/cgal_info" "$input" > "$WORK/r.jsonl"
+  python3 bench/measure.py "$RUNS" qmesh -- "$Q" info "$input" --json \
+    --- "qmesh, 1 thread" -- env RAYON_NUM_THREADS=1 "$Q" info "$input" --json \
+    --- cgal -- "$WORK/cgal_info" "$input" > "$WORK/r.jsonl"
   python3 - "$input" "$WORK/r.jsonl" <<'PY'
 import json, os, sys
-q, c = [json.loads(l) for l in open(sys.argv[2])]
+rows = [json.loads(l) for l in open(sys.argv[2])]
+c = rows[-1]
 name = os.path.basename(sys.argv[1])
-for r in (q, c):
+for r in rows:
     o = r["output"]
-    ratio = f"{c['seconds'] / q['seconds']:.2f} | {c['peak_rss_bytes'] / q['peak_rss_bytes']:.2f} |" if r is q else " | |"
+    ratio = f"{c['seconds'] / r['seconds']:.2f} | {c['peak_rss_bytes'] / r['peak_rss_bytes']:.2f} |" if r is not c else " | |"
     print(f"| {name} | {r['label']} | {o['darts']} | {o['volumes']} | {o['valid']} | {r['seconds']:.3f} | "
           f"{r['peak_rss_bytes'] / 1e6:.1f} | {ratio}")
 PY

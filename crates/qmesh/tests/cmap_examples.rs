@@ -1,21 +1,10 @@
 //! The papers' hand-built examples and one test per operation, CGAL style:
 //! precondition, operation, `is_valid()` after each step.
 
-use qmesh::cmap::{CMap3, Dart, MapError, Orbit};
+mod common;
 
-fn unit_cube_vertices(m: &mut CMap3, x0: f64) -> [u32; 8] {
-    let c = [
-        [0., 0., 0.],
-        [1., 0., 0.],
-        [1., 1., 0.],
-        [0., 1., 0.],
-        [0., 0., 1.],
-        [1., 0., 1.],
-        [1., 1., 1.],
-        [0., 1., 1.],
-    ];
-    c.map(|p| m.add_vertex([p[0] + x0, p[1], p[2]]))
-}
+use common::unit_cube_vertices;
+use qmesh::cmap::{CMap3, Dart, MapError, Orbit};
 
 fn assert_valid(m: &CMap3) {
     let v = m.is_valid();

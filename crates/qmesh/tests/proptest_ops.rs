@@ -2,6 +2,8 @@
 //! and volume removals keep the map valid after every step, with cell counts changing
 //! exactly as each operation dictates.
 
+mod common;
+
 use proptest::prelude::*;
 use qmesh::cmap::{CMap3, Dart, Orbit};
 

@@ -13,6 +13,17 @@ impl CMap3 {
     /// Renumbers live darts 1..=n in their current order, empties the free list, and
     /// keeps only the vertex ids some dart uses (in increasing order). Side tables
     /// indexed by dart or vertex id can be remapped with the returned tables.
+    ///
+    /// ```
+    /// use qmesh::build::{BuildOptions, build_volume_map};
+    /// let (mut m, _) = build_volume_map(&qmesh::generate::hex_grid(2, 1, 1), &BuildOptions::default()).unwrap();
+    /// let first = m.darts().next().unwrap();
+    /// m.remove_volume(first).unwrap();
+    /// let table = m.compact();
+    /// assert_eq!(table.darts[first.idx()], 0); // removed
+    /// assert_eq!((m.nb_darts(), m.dart_capacity(), m.nb_vertex_ids()), (24, 25, 8));
+    /// assert!(m.is_valid().is_empty());
+    /// ```
     pub fn compact(&mut self) -> Compaction {
         let n = self.dart_capacity();
         let mut dmap = vec![0u32; n];

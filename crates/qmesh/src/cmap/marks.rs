@@ -22,6 +22,17 @@ impl Mark {
 impl CMap3 {
     /// Reserves a mark, initially clear on every dart.
     ///
+    /// ```
+    /// use qmesh::cmap::CMap3;
+    /// let mut m = CMap3::new();
+    /// let v: Vec<u32> = (0..4).map(|i| m.add_vertex([i as f64, (i * i) as f64, (i * i * i) as f64])).collect();
+    /// let d = m.make_tetrahedron([v[0], v[1], v[2], v[3]]);
+    /// let flag = m.reserve_mark().unwrap();
+    /// m.mark(d, flag);
+    /// assert!(m.is_marked(d, flag) && !m.is_marked(m.next(d), flag));
+    /// m.free_mark(flag);
+    /// ```
+    ///
     /// # Errors
     /// [`MapError::NoMarkLeft`] when all 31 user marks are in use.
     pub fn reserve_mark(&mut self) -> Result<Mark, MapError> {

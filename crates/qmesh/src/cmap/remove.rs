@@ -58,6 +58,15 @@ impl CMap3 {
 
     /// Removes the volume of `d`; its neighbours become 3-free there (boundary).
     /// Returns the number of darts removed.
+    ///
+    /// ```
+    /// use qmesh::build::{BuildOptions, build_volume_map};
+    /// let (mut m, _) = build_volume_map(&qmesh::generate::hex_grid(2, 1, 1), &BuildOptions::default()).unwrap();
+    /// let first = m.darts().next().unwrap();
+    /// assert_eq!(m.remove_volume(first).unwrap(), 24);
+    /// assert_eq!((m.count_cells().volumes, m.boundary_faces()), (1, 6));
+    /// assert!(m.is_valid().is_empty());
+    /// ```
     pub fn remove_volume(&mut self, d: Dart) -> Result<usize, MapError> {
         self.err_if_dead(d)?;
         let vol: Vec<Dart> = self.with_scratch(|m, w| w.collect(m, d, Orbit::Volume).to_vec());

@@ -55,6 +55,19 @@ impl CMap3 {
 
     /// 1-sews `d1` to `d2` (β1(d1) = d2); when both are 3-sewn, also β1(β3(d2)) = β3(d1).
     ///
+    /// ```
+    /// use qmesh::cmap::CMap3;
+    /// let mut m = CMap3::new();
+    /// m.set_dimension(2);
+    /// let v: Vec<u32> = (0..3).map(|i| m.add_vertex([i as f64, (i % 2) as f64, 0.0])).collect();
+    /// let d = m.make_polygon(&v);
+    /// let n = m.next(d);
+    /// m.unsew1(d).unwrap(); // open the triangle …
+    /// assert!(m.is_free(d, 1) && !m.is_valid().is_empty());
+    /// m.sew1(d, n).unwrap(); // … and close it again
+    /// assert!(m.is_valid().is_empty());
+    /// ```
+    ///
     /// # Errors
     /// If β1(d1) or β0(d2) is already sewn, or only one of the two is 3-sewn.
     pub fn sew1(&mut self, d1: Dart, d2: Dart) -> Result<(), MapError> {
@@ -81,6 +94,21 @@ impl CMap3 {
     }
 
     /// 2-sews `d1` and `d2` (two darts of the same edge in opposite directions).
+    ///
+    /// ```
+    /// use qmesh::cmap::CMap3;
+    /// let mut m = CMap3::new();
+    /// m.set_dimension(2);
+    /// let v: Vec<u32> = [[0., 0., 0.], [1., 0., 0.], [1., 1., 0.], [0., 1., 0.]].iter().map(|p| m.add_vertex(*p)).collect();
+    /// let a = m.make_polygon(&[v[0], v[1], v[2]]); // a: 0→1
+    /// let b = m.make_polygon(&[v[0], v[2], v[3]]); // b: 0→2
+    /// let ab = m.prev(a); // 2→0
+    /// m.sew2(ab, b).unwrap();
+    /// assert!(m.is_valid().is_empty());
+    /// assert_eq!(m.boundary_edges(), 4);
+    /// m.unsew2(b).unwrap();
+    /// assert_eq!(m.boundary_edges(), 6);
+    /// ```
     ///
     /// # Errors
     /// If either is already 2-sewn or `d1 == d2`.
@@ -195,7 +223,23 @@ impl CMap3 {
         Ok(())
     }
 
-    /// 3-unsews the whole face of `d` from its neighbour volume.
+    /// 3-unsews the whole face of `d` from its neighbour volume. Vertices that were only
+    /// joined through that face become distinct vertices again.
+    ///
+    /// ```
+    /// use qmesh::cmap::CMap3;
+    /// let mut m = CMap3::new();
+    /// let p = |m: &mut CMap3, x: f64, y: f64, z: f64| m.add_vertex([x, y, z]);
+    /// let (a, b, c, t, u) = (p(&mut m, 0., 0., 0.), p(&mut m, 1., 0., 0.), p(&mut m, 0., 1., 0.), p(&mut m, 0., 0., 1.), p(&mut m, 0., 0., -1.));
+    /// let d1 = m.make_tetrahedron([a, b, c, t]);
+    /// let d2 = m.make_tetrahedron([a, c, b, u]);
+    /// let d2 = m.prev(d2);
+    /// m.sew3(d1, d2).unwrap();
+    /// assert_eq!(m.count_cells().vertices, 5);
+    /// m.unsew3(d1).unwrap();
+    /// assert_eq!(m.count_cells().vertices, 8);
+    /// assert!(m.is_valid().is_empty());
+    /// ```
     ///
     /// # Errors
     /// If d is 3-free.

@@ -49,6 +49,17 @@ impl CMap3 {
     /// Splits the edge of `d` into `k` equal segments (the e-pattern, 2022 §4.1) and
     /// returns the `k - 1` new darts along `d`'s side, in order from d's origin.
     ///
+    /// ```
+    /// use qmesh::cmap::CMap3;
+    /// let mut m = CMap3::new();
+    /// let v: Vec<u32> = [[0., 0., 0.], [3., 0., 0.], [0., 3., 0.], [0., 0., 3.]].iter().map(|p| m.add_vertex(*p)).collect();
+    /// let d = m.make_tetrahedron([v[0], v[1], v[2], v[3]]); // d runs 0 → 1
+    /// let new = m.split_edge(d, 3).unwrap();
+    /// assert_eq!((m.point(new[0]), m.point(new[1])), ([1., 0., 0.], [2., 0., 0.]));
+    /// assert_eq!(m.count_cells().edges, 8);
+    /// assert!(m.is_valid().is_empty());
+    /// ```
+    ///
     /// # Errors
     /// [`MapError::BadSegmentCount`] when `k == 0`.
     pub fn split_edge(&mut self, d: Dart, k: usize) -> Result<Vec<Dart>, MapError> {

@@ -61,6 +61,16 @@ impl fmt::Display for Violation {
 }
 
 impl CMap3 {
+    /// ```
+    /// use qmesh::cmap::{CMap3, Violation};
+    /// let mut m = CMap3::new();
+    /// let v: Vec<u32> = (0..4).map(|i| m.add_vertex([i as f64, (i * i) as f64, (i * i * i) as f64])).collect();
+    /// let d = m.make_tetrahedron([v[0], v[1], v[2], v[3]]);
+    /// assert!(m.is_valid().is_empty());
+    /// m.unlink(d, 2); // low-level: opens the volume
+    /// assert!(m.is_valid().iter().any(|x| matches!(x, Violation::Beta2Free { .. })));
+    /// ```
+    ///
     /// Every violated property (empty when the map is valid): β1 a permutation with β0
     /// its inverse; β2, β3 and β1∘β3 involutions without fixed points; β1 never free,
     /// β2 never free in volume maps; one vertex id per vertex orbit and one orbit per

@@ -31,6 +31,21 @@ pub fn data_files(sub: &str) -> Vec<PathBuf> {
     v
 }
 
+/// Adds the 8 corners of the unit cube shifted by `x0` along x, in VTK hex order.
+pub fn unit_cube_vertices(m: &mut qmesh::cmap::CMap3, x0: f64) -> [u32; 8] {
+    let c = [
+        [0., 0., 0.],
+        [1., 0., 0.],
+        [1., 1., 0.],
+        [0., 1., 0.],
+        [0., 0., 1.],
+        [1., 0., 1.],
+        [1., 1., 1.],
+        [0., 1., 1.],
+    ];
+    c.map(|p| m.add_vertex([p[0] + x0, p[1], p[2]]))
+}
+
 /// A fresh temporary folder for one test.
 pub fn temp_dir(name: &str) -> PathBuf {
     let d = std::env::temp_dir().join(format!("qmesh-test-{}-{name}", std::process::id()));

@@ -1,0 +1,126 @@
+//! The `qmesh` binary as users call it: exit statuses, JSON keys, messages.
+
+use std::path::PathBuf;
+use std::process::Command;
+
+use qmesh::cmap::CMap3;
+use qmesh::io::{WriteOptions, write_map};
+
+fn qmesh(args: &[&str]) -> (i32, String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_qmesh")).args(args).output().expect("run qmesh");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into(),
+        String::from_utf8_lossy(&out.stderr).into(),
+    )
+}
+
+fn temp(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("qmesh-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&d).unwrap();
+    d.join(name)
+}
+
+#[test]
+fn info_json_has_the_documented_keys() {
+    let grid = temp("g.vtk");
+    let (code, _, err) = qmesh(&["generate", "grid", "--size", "3,2,1", "-o", grid.to_str().unwrap()]);
+    assert_eq!(code, 0, "{err}");
+    let (code, out, err) = qmesh(&["info", grid.to_str().unwrap(), "--json"]);
+    assert_eq!(code, 0, "{err}");
+    let j: serde_json::Value = serde_json::from_str(&out).unwrap();
+    for k in [
+        "darts",
+        "vertices",
+        "edges",
+        "faces",
+        "volumes",
+        "boundary_faces",
+        "euler_characteristic",
+        "components",
+        "cell_types",
+        "inverted_cells",
+        "valid",
+        "read_seconds",
+        "build_seconds",
+        "peak_memory_bytes",
+    ] {
+        assert!(j.get(k).is_some(), "missing key {k}");
+    }
+    assert_eq!(j["darts"], 6 * 24);
+    assert_eq!(j["volumes"], 6);
+    assert_eq!(j["cell_types"]["hex"], 6);
+    assert_eq!(j["euler_characteristic"], 1);
+    assert_eq!(j["valid"], true);
+    assert!(j["peak_memory_bytes"].as_u64().unwrap() > 0);
+}
+
+#[test]
+fn surface_info_reports_boundary_edges() {
+    let off = temp("open.off");
+    std::fs::write(&off, "OFF\n4 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 3\n").unwrap();
+    let (code, out, _) = qmesh(&["info", off.to_str().unwrap(), "--json"]);
+    assert_eq!(code, 0);
+    let j: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(j["boundary_edges"], 4);
+    assert_eq!(j["euler_characteristic"], 1);
+}
+
+#[test]
+fn validate_exits_1_with_violations_on_an_invalid_map() {
+    // A map with a dangling β3 (written as .moka, which stores maps as they are).
+    let mut m = CMap3::new();
+    let v: Vec<u32> = (0..4).map(|i| m.add_vertex([i as f64, (i * i) as f64, 0.5 * i as f64])).collect();
+    let a = m.make_tetrahedron([v[0], v[1], v[2], v[3]]);
+    let b = m.next(m.next(a));
+    m.link(a, 3, b); // the rest of the face stays 3-free: β1∘β3 is not an involution
+    let bad = temp("bad.moka");
+    write_map(&bad, &m, None, &WriteOptions::default()).unwrap();
+    let (code, out, _) = qmesh(&["validate", bad.to_str().unwrap()]);
+    assert_eq!(code, 1, "{out}");
+    assert!(out.contains("INVALID") && out.contains("β1∘β3"), "{out}");
+    let good = temp("good.vtk");
+    qmesh(&["generate", "tet-grid", "--size", "2", "-o", good.to_str().unwrap()]);
+    let (code, out, _) = qmesh(&["validate", good.to_str().unwrap()]);
+    assert_eq!(code, 0, "{out}");
+}
+
+#[test]
+fn convert_refuses_to_overwrite_its_input_and_reports_errors() {
+    let grid = temp("c.mesh");
+    qmesh(&["generate", "grid", "--size", "2", "-o", grid.to_str().unwrap()]);
+    let before = std::fs::read(&grid).unwrap();
+    let (code, _, err) = qmesh(&["convert", grid.to_str().unwrap(), grid.to_str().unwrap()]);
+    assert_eq!(code, 2);
+    assert!(err.contains("refusing to overwrite"), "{err}");
+    assert_eq!(std::fs::read(&grid).unwrap(), before);
+    let out = temp("c.msh");
+    let (code, _, err) = qmesh(&["convert", grid.to_str().unwrap(), out.to_str().unwrap()]);
+    assert_eq!(code, 0, "{err}");
+    let (code, _, err) = qmesh(&["info", "/nonexistent/x.vtk"]);
+    assert_eq!(code, 2);
+    assert!(err.starts_with("error: /nonexistent/x.vtk"), "{err}");
+    let broken = temp("broken.mesh");
+    std::fs::write(&broken, "MeshVersionFormatted 2\nDimension 3\nVertices\n2\n0 0 0 0\n").unwrap();
+    let (code, _, err) = qmesh(&["info", broken.to_str().unwrap()]);
+    assert_eq!(code, 2);
+    assert!(err.contains("broken.mesh:line 4"), "{err}");
+    // No temporary file is left next to a failed output.
+    let leftovers = std::fs::read_dir(out.parent().unwrap())
+        .unwrap()
+        .filter(|e| e.as_ref().unwrap().file_name().to_string_lossy().contains("qmesh-tmp"));
+    assert_eq!(leftovers.count(), 0);
+}
+
+#[test]
+fn demo_runs_and_writes_its_files() {
+    let dir = temp("demo");
+    let (code, out, err) = qmesh(&["demo", "-o", dir.to_str().unwrap()]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("valid = true"));
+    for f in ["hex_grid.vtk", "tet_grid.mesh", "hex_grid_split.vtk", "hex_grid_boundary.off", "tet_grid.moka"] {
+        assert!(dir.join(f).is_file(), "{f}");
+        let (code, _, err) = qmesh(&["validate", dir.join(f).to_str().unwrap()]);
+        assert_eq!(code, 0, "{f}: {err}");
+    }
+}
