@@ -9,7 +9,7 @@ use qmesh::geom::signed_volume_of_table;
 /// One cell of each kind in VTK order, side by side, plus an octagonal prism polyhedron.
 fn zoo() -> IndexedMesh {
     let mut m = IndexedMesh::new();
-    let mut add = |m: &mut IndexedMesh, kind: CellKind, pts: &[[f64; 3]], x: f64| {
+    let add = |m: &mut IndexedMesh, kind: CellKind, pts: &[[f64; 3]], x: f64| {
         let base = m.points.len() as u32;
         m.points.extend(pts.iter().map(|p| [p[0] + x, p[1], p[2]]));
         let nodes: Vec<u32> = (0..pts.len() as u32).map(|k| base + k).collect();
