@@ -25,6 +25,8 @@ enum Command {
     Convert(cmd::convert::Args),
     /// Writes built-in meshes (structured hex or tet grids).
     Generate(cmd::generate::Args),
+    /// Pattern sets: audit (kinds, signatures, automorphisms, duplicates).
+    Patterns(cmd::patterns::Args),
     /// A short tour on built-in inputs: generate, inspect, split edges, write files.
     Demo(cmd::demo::Args),
 }
@@ -37,6 +39,7 @@ fn main() -> ExitCode {
         Command::Convert(a) => cmd::convert::run(a),
         Command::Generate(a) => cmd::generate::run(a),
         Command::Demo(a) => cmd::demo::run(a),
+        Command::Patterns(a) => cmd::patterns::run(a),
     };
     match result {
         Ok(code) => code,

@@ -10,3 +10,5 @@ pub mod cmap;
 pub mod generate;
 pub mod geom;
 pub mod io;
+pub mod pattern;
+pub mod signature;

@@ -4,6 +4,7 @@ pub mod convert;
 pub mod demo;
 pub mod generate;
 pub mod info;
+pub mod patterns;
 pub mod validate;
 
 use std::path::PathBuf;

@@ -1,0 +1,95 @@
+//! Flag rules for patterns (2022 §3, `shared/data/patterns/cgal/FORMAT.md`): which
+//! boundary darts are flagged, computed from the geometry.
+
+use crate::cmap::{CMap3, Dart, Mark};
+use crate::geom::{cross, dot, sub};
+use crate::signature::{Surface, pattern_face_boundary};
+
+/// How pattern flags are set.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum FlagRule {
+    /// Darts starting at an original corner of the cell the pattern replaces.
+    #[default]
+    Corners,
+    /// No flags: signatures are purely topological.
+    None,
+}
+
+/// Sine of the angular tolerance (0.1°) under which two directions count as parallel.
+const SIN_TOL: f64 = 0.001_745_328;
+
+fn norm(a: [f64; 3]) -> f64 {
+    dot(a, a).sqrt()
+}
+
+/// Whether directions `a` and `b` differ by more than the tolerance.
+fn not_parallel(a: [f64; 3], b: [f64; 3]) -> bool {
+    let (na, nb) = (norm(a), norm(b));
+    na > 0.0 && nb > 0.0 && (norm(cross(a, b)) > SIN_TOL * na * nb || dot(a, b) < 0.0)
+}
+
+/// Newell normal of the face of `d`.
+fn face_normal(map: &CMap3, d: Dart) -> [f64; 3] {
+    let mut n = [0.0; 3];
+    let mut x = d;
+    loop {
+        let (p, q) = (map.point(x), map.point(map.next(x)));
+        n[0] += (p[1] - q[1]) * (p[2] + q[2]);
+        n[1] += (p[2] - q[2]) * (p[0] + q[0]);
+        n[2] += (p[0] - q[0]) * (p[1] + q[1]);
+        x = map.next(x);
+        if x == d {
+            return n;
+        }
+    }
+}
+
+/// Flags with `mark` the boundary darts that start at a geometric corner of the
+/// pattern's boundary: for an f-pattern, where consecutive boundary edges are not
+/// aligned; for a v-pattern, darts on a feature edge (between non-coplanar boundary
+/// faces) whose origin is a corner (boundary normals around it span 3 dimensions).
+/// Returns the number of flagged darts.
+pub fn flag_corners(map: &mut CMap3, mark: Mark, boundary: &[Dart], face_pattern: bool) -> usize {
+    let flagged: Vec<Dart> = if face_pattern {
+        let cycle = pattern_face_boundary(map, boundary[0]).unwrap_or_default();
+        let n = cycle.len();
+        (0..n)
+            .filter(|&i| {
+                let (prev, d, next) = (cycle[(i + n - 1) % n], cycle[i], cycle[(i + 1) % n]);
+                let before = sub(map.point(d), map.point(prev));
+                let after = sub(map.point(next), map.point(d));
+                not_parallel(before, after)
+            })
+            .map(|i| cycle[i])
+            .collect()
+    } else {
+        let normal: rustc_hash::FxHashMap<Dart, [f64; 3]> =
+            boundary.iter().map(|&d| (d, face_normal(map, d))).collect();
+        // Normals of the boundary faces around each vertex.
+        let mut around: rustc_hash::FxHashMap<u32, Vec<[f64; 3]>> = Default::default();
+        for &d in boundary {
+            around.entry(map.vertex_of(d)).or_default().push(normal[&d]);
+        }
+        let corner = |v: u32| {
+            let ns = &around[&v];
+            ns.iter().any(|&a| {
+                ns.iter().any(|&b| {
+                    let ab = cross(a, b);
+                    ns.iter().any(|&c| dot(ab, c).abs() > SIN_TOL * norm(a) * norm(b) * norm(c))
+                })
+            })
+        };
+        boundary
+            .iter()
+            .copied()
+            .filter(|&d| {
+                let Some(o) = Surface::PatternBoundary.opposite(map, d) else { return false };
+                corner(map.vertex_of(d)) && not_parallel(normal[&d], normal.get(&o).copied().unwrap_or([0.0; 3]))
+            })
+            .collect()
+    };
+    for &d in &flagged {
+        map.mark(d, mark);
+    }
+    flagged.len()
+}

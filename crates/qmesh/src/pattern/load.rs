@@ -1,0 +1,116 @@
+//! Loading one pattern file: any mesh format qmesh reads, kind recognised from the
+//! boundary, signature and automorphisms computed once.
+
+use std::path::Path;
+
+use super::flags::{FlagRule, flag_corners};
+use super::{Pattern, PatternKind};
+use crate::build::{BuildOptions, build_map};
+use crate::cmap::{CMap3, Dart};
+use crate::io::{IoError, Loaded, read};
+use crate::signature::{
+    Flags, Surface, cycle_automorphisms, pattern_face_boundary, pattern_face_signature, volume_signature, word_from,
+};
+
+/// Why a file is not a usable pattern.
+#[derive(Debug, thiserror::Error)]
+pub enum PatternError {
+    #[error(transparent)]
+    Io(#[from] IoError),
+    #[error("{path}: {msg}", path = path.display())]
+    Invalid { path: std::path::PathBuf, msg: String },
+}
+
+fn invalid(path: &Path, msg: impl Into<String>) -> PatternError {
+    PatternError::Invalid { path: path.to_path_buf(), msg: msg.into() }
+}
+
+/// Reads a pattern. Cells of volume files are oriented by their signed volume (the
+/// papers' VTK patterns store wedges inverted), so the map is consistently oriented.
+///
+/// # Errors
+/// An unreadable file, a map that is not valid, or a boundary that is not a single
+/// cycle of 2-free darts (f-pattern) or a single closed surface of 3-free darts
+/// (v-pattern).
+pub fn load_pattern(path: &Path, rule: FlagRule) -> Result<Pattern, PatternError> {
+    let mut map = match read(path, None)? {
+        Loaded::Map(m) => m,
+        Loaded::Indexed(mesh) => {
+            build_map(mesh, &BuildOptions { fix_orientation: true })
+                .map_err(|cause| IoError::Build { path: path.into(), cause })?
+                .0
+        }
+    };
+    if let Some(v) = map.is_valid().first() {
+        return Err(invalid(path, format!("the pattern is not a valid map: {v}")));
+    }
+    let two_free: Vec<Dart> = map.darts().filter(|&d| map.is_free(d, 2)).collect();
+    let three_free: Vec<Dart> = map.darts().filter(|&d| map.is_free(d, 3)).collect();
+    let (kind, boundary) = if !two_free.is_empty() {
+        let cycle = pattern_face_boundary(&map, two_free[0])
+            .ok_or_else(|| invalid(path, "the 2-free darts do not close into a boundary cycle"))?;
+        if cycle.len() != two_free.len() {
+            return Err(invalid(
+                path,
+                format!(
+                    "an f-pattern boundary must be one cycle of 2-free darts: found a cycle of {} and {} 2-free darts",
+                    cycle.len(),
+                    two_free.len()
+                ),
+            ));
+        }
+        map.set_dimension(2);
+        (PatternKind::Face, cycle)
+    } else {
+        let first =
+            *three_free.first().ok_or_else(|| invalid(path, "the map is closed: no 3-free darts, no boundary"))?;
+        let surface = word_from(&map, Surface::PatternBoundary, Flags::None, first, None)
+            .ok_or_else(|| invalid(path, "the 3-free darts do not form a closed surface"))?
+            .darts;
+        if surface.len() != three_free.len() {
+            return Err(invalid(
+                path,
+                format!(
+                    "a v-pattern boundary must be one closed surface: it reaches {} of {} 3-free darts",
+                    surface.len(),
+                    three_free.len()
+                ),
+            ));
+        }
+        (PatternKind::Volume, surface)
+    };
+    finish(path, map, kind, boundary, rule)
+}
+
+fn finish(
+    path: &Path,
+    mut map: CMap3,
+    kind: PatternKind,
+    boundary: Vec<Dart>,
+    rule: FlagRule,
+) -> Result<Pattern, PatternError> {
+    let mark = map.reserve_mark().map_err(|e| invalid(path, e.to_string()))?;
+    if rule == FlagRule::Corners {
+        flag_corners(&mut map, mark, &boundary, kind == PatternKind::Face);
+    }
+    let flags = Flags::Mark(mark);
+    let (signature, automorphisms) = match kind {
+        PatternKind::Face => {
+            let sig = pattern_face_signature(&map, flags, boundary[0]).expect("boundary checked above");
+            let f: Vec<bool> = boundary.iter().map(|&d| flags.get(&map, d)).collect();
+            (sig, cycle_automorphisms(&f))
+        }
+        PatternKind::Volume => volume_signature(&map, Surface::PatternBoundary, flags, boundary[0])
+            .ok_or_else(|| invalid(path, "the boundary surface is open"))?,
+    };
+    Ok(Pattern {
+        file: path.to_path_buf(),
+        kind,
+        boundary: boundary[0],
+        boundary_darts: boundary.len(),
+        map,
+        flags: mark,
+        signature,
+        automorphisms,
+    })
+}

@@ -1,0 +1,52 @@
+//! Patterns (2022 §4): small maps whose boundary is searched for in a mesh and whose
+//! interior replaces the match; pattern sets keyed by signature; audits (§6.4).
+
+mod audit;
+mod flags;
+mod load;
+mod set;
+
+pub use audit::{Audit, AuditEntry, audit};
+pub use flags::{FlagRule, flag_corners};
+pub use load::{PatternError, load_pattern};
+pub use set::{PatternSet, Skipped, load_pattern_dir};
+
+use std::path::PathBuf;
+
+use crate::cmap::{CMap3, Dart, Mark};
+use crate::signature::Signature;
+
+/// What a pattern replaces.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum PatternKind {
+    /// f-pattern: connected faces whose boundary is one cycle of 2-free darts.
+    Face,
+    /// v-pattern: connected volumes whose boundary is one closed surface of 3-free darts.
+    Volume,
+}
+
+impl PatternKind {
+    pub fn name(self) -> &'static str {
+        match self {
+            PatternKind::Face => "f-pattern",
+            PatternKind::Volume => "v-pattern",
+        }
+    }
+}
+
+/// A loaded pattern with its precomputed signature.
+#[derive(Debug)]
+pub struct Pattern {
+    pub file: PathBuf,
+    pub kind: PatternKind,
+    pub map: CMap3,
+    /// The mark holding the pattern's flags.
+    pub flags: Mark,
+    /// A boundary dart (2-free for f-patterns, 3-free for v-patterns).
+    pub boundary: Dart,
+    /// Number of boundary darts.
+    pub boundary_darts: usize,
+    pub signature: Signature,
+    /// Flag-preserving automorphisms of the boundary (1 = a unique placement).
+    pub automorphisms: usize,
+}

@@ -1,0 +1,111 @@
+//! `PatternSet`: signature → pattern, built once (2022 §4); lookups in amortised O(1).
+
+use std::path::{Path, PathBuf};
+
+use rustc_hash::FxHashMap;
+
+use super::flags::FlagRule;
+use super::load::load_pattern;
+use super::{Pattern, PatternKind};
+use crate::io::Format;
+use crate::signature::Signature;
+
+/// A file of a patterns folder that was not loaded, and why.
+#[derive(Debug, Clone)]
+pub struct Skipped {
+    pub file: PathBuf,
+    pub reason: String,
+}
+
+/// Patterns indexed by signature. Patterns with equal signatures are duplicates: the
+/// first one (in file order) is used, the audit lists the others.
+#[derive(Debug, Default)]
+pub struct PatternSet {
+    pub patterns: Vec<Pattern>,
+    pub skipped: Vec<Skipped>,
+    index: FxHashMap<Signature, Vec<usize>>,
+}
+
+impl PatternSet {
+    /// Adds a pattern; returns its index.
+    pub fn insert(&mut self, p: Pattern) -> usize {
+        let i = self.patterns.len();
+        self.index.entry(p.signature.clone()).or_default().push(i);
+        self.patterns.push(p);
+        i
+    }
+
+    /// The pattern whose boundary has this signature.
+    pub fn lookup(&self, s: &Signature) -> Option<&Pattern> {
+        self.index.get(s).map(|v| &self.patterns[v[0]])
+    }
+
+    /// Groups of patterns (indices) sharing one signature.
+    pub fn duplicates(&self) -> Vec<Vec<usize>> {
+        let mut d: Vec<Vec<usize>> = self.index.values().filter(|v| v.len() > 1).cloned().collect();
+        d.sort();
+        d
+    }
+
+    pub fn count(&self, kind: PatternKind) -> usize {
+        self.patterns.iter().filter(|p| p.kind == kind).count()
+    }
+}
+
+/// Loads every mesh file under `dir` (recursively, in sorted order; the papers'
+/// `fpattern/` and `vpattern/` subfolders included) or a single file. Files that are
+/// not meshes or not valid patterns are recorded in `skipped` with the reason.
+///
+/// When `dir` has `fpattern/` or `vpattern/` subfolders (the papers' layout), only
+/// those are read and each pattern must be of its folder's kind; other files are
+/// reported as skipped.
+pub fn load_pattern_dir(dir: &Path, rule: FlagRule) -> PatternSet {
+    let mut files = Vec::new();
+    collect(dir, &mut files);
+    files.sort();
+    let layout = ["fpattern", "vpattern"].map(|s| dir.join(s)).into_iter().filter(|p| p.is_dir()).count() > 0;
+    let mut set = PatternSet::default();
+    for f in files {
+        let expected = expected_kind(dir, &f);
+        if layout && expected.is_none() {
+            set.skipped.push(Skipped { file: f, reason: "outside the fpattern/ and vpattern/ folders".into() });
+            continue;
+        }
+        if Format::from_path(&f).is_none() {
+            set.skipped.push(Skipped { file: f, reason: "not a mesh file".into() });
+            continue;
+        }
+        match load_pattern(&f, rule) {
+            Ok(p) if expected.is_some_and(|k| k != p.kind) => {
+                let reason = format!("a {} in a folder of {}s", p.kind.name(), expected.unwrap().name());
+                set.skipped.push(Skipped { file: f, reason });
+            }
+            Ok(p) => {
+                set.insert(p);
+            }
+            Err(e) => set.skipped.push(Skipped { file: f, reason: e.to_string() }),
+        }
+    }
+    set
+}
+
+/// The kind implied by the papers' layout (`DIR/fpattern/…`, `DIR/vpattern/…`).
+fn expected_kind(dir: &Path, file: &Path) -> Option<PatternKind> {
+    match file.strip_prefix(dir).ok()?.components().next()?.as_os_str().to_str()? {
+        "fpattern" => Some(PatternKind::Face),
+        "vpattern" => Some(PatternKind::Volume),
+        _ => None,
+    }
+}
+
+fn collect(p: &Path, out: &mut Vec<PathBuf>) {
+    if p.is_dir() {
+        if let Ok(rd) = std::fs::read_dir(p) {
+            for e in rd.flatten() {
+                collect(&e.path(), out);
+            }
+        }
+    } else if p.is_file() {
+        out.push(p.to_path_buf());
+    }
+}

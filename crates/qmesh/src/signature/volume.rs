@@ -1,0 +1,99 @@
+//! v-signatures: words of a labelled breadth-first traversal of a closed surface
+//! (2022 Algorithm 2 and Definition 6), minimised over start darts, flag bits appended.
+
+use rustc_hash::FxHashMap;
+
+use super::{Flags, Signature, Surface};
+use crate::cmap::{CMap3, Dart};
+
+/// The word of one traversal: for each dart in label order, the labels of its β1 and
+/// opposite neighbours; then one flag bit per dart (0/1).
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct VolumeWord {
+    pub word: Vec<u32>,
+    pub bits: Vec<u32>,
+    /// Darts in label order (d_1, d_2, …).
+    pub darts: Vec<Dart>,
+}
+
+/// Labels the surface from `start` (Algorithm 2) and returns its word, or None when the
+/// surface is open (a missing opposite) — not a closed boundary. If `bound` is given,
+/// stops early (returning None) as soon as the word exceeds it.
+pub fn word_from(
+    map: &CMap3,
+    surface: Surface,
+    flags: Flags,
+    start: Dart,
+    bound: Option<&[u32]>,
+) -> Option<VolumeWord> {
+    let mut label: FxHashMap<Dart, u32> = FxHashMap::default();
+    let mut out = VolumeWord::default();
+    label.insert(start, 1);
+    out.darts.push(start);
+    let mut k = 0;
+    let mut below = false; // the word is already strictly below the bound
+    while k < out.darts.len() {
+        let d = out.darts[k];
+        k += 1;
+        for n in [Some(map.next(d)), surface.opposite(map, d)] {
+            let n = n?;
+            let next = out.darts.len() as u32 + 1;
+            let l = *label.entry(n).or_insert_with(|| {
+                out.darts.push(n);
+                next
+            });
+            out.word.push(l);
+            if let Some(b) = bound
+                && !below
+            {
+                let i = out.word.len() - 1;
+                match b.get(i).map(|&x| l.cmp(&x)) {
+                    Some(std::cmp::Ordering::Less) => below = true,
+                    Some(std::cmp::Ordering::Greater) | None => return None,
+                    Some(std::cmp::Ordering::Equal) => {}
+                }
+            }
+        }
+    }
+    out.bits = out.darts.iter().map(|&d| flags.get(map, d) as u32).collect();
+    Some(out)
+}
+
+/// The direct isomorphism test of 2022 §2.3 (no signature): the word of surface A from
+/// `a_start` is compared with the words of surface B from each of its darts; returns the
+/// dart of B matching `a_start`, if the surfaces are isomorphic (flags preserved).
+pub fn match_direct(a: (&CMap3, Surface, Flags, Dart), b: (&CMap3, Surface, Flags, Dart)) -> Option<Dart> {
+    let wa = word_from(a.0, a.1, a.2, a.3, None)?;
+    let full_a: Vec<u32> = wa.word.iter().chain(&wa.bits).copied().collect();
+    let starts = word_from(b.0, b.1, b.2, b.3, None)?.darts;
+    if starts.len() != wa.darts.len() {
+        return None;
+    }
+    starts
+        .into_iter()
+        .find(|&t| word_from(b.0, b.1, b.2, t, Some(&full_a)).is_some_and(|w| w.word == wa.word && w.bits == wa.bits))
+}
+
+/// The v-signature of the surface containing `any` (a pattern's boundary or an input
+/// volume) and its automorphism count (start darts giving the minimal word), or None
+/// when the surface is not closed. With flags, only flagged darts start traversals.
+pub fn volume_signature(map: &CMap3, surface: Surface, flags: Flags, any: Dart) -> Option<(Signature, usize)> {
+    let all = word_from(map, surface, flags, any, None)?.darts;
+    let flagged: Vec<Dart> = all.iter().copied().filter(|&d| flags.get(map, d)).collect();
+    let starts = if flagged.is_empty() { all } else { flagged };
+    let mut best: Option<Vec<u32>> = None;
+    let mut count = 0;
+    for &s in &starts {
+        let Some(w) = word_from(map, surface, flags, s, best.as_deref()) else { continue };
+        let full: Vec<u32> = w.word.iter().chain(&w.bits).copied().collect();
+        match best.as_ref().map(|b| full.cmp(b)) {
+            None | Some(std::cmp::Ordering::Less) => {
+                best = Some(full);
+                count = 1;
+            }
+            Some(std::cmp::Ordering::Equal) => count += 1,
+            Some(std::cmp::Ordering::Greater) => {}
+        }
+    }
+    best.map(|b| (Signature::Volume(b), count))
+}
