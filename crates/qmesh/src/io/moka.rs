@@ -24,20 +24,19 @@ fn parse_gdarts(lx: &mut Lexer<'_>) -> IoResult<Vec<GDart>> {
     lx.rest_of_line(); // global mark state
     let mut out = Vec::new();
     while lx.remaining() > 0 {
-        let line_no_check = lx.peek().is_some();
-        if !line_no_check {
+        if lx.peek().is_none() {
             break;
         }
         let mut alpha = [0u32; 4];
-        for (i, a) in alpha.iter_mut().enumerate() {
-            let v: i64 = lx.parse(&format!("α{i} of g-dart {}", out.len()))?;
+        for a in alpha.iter_mut() {
+            let v = lx.int("an α index (a g-dart number)")?;
             if v < 0 || v > u32::MAX as i64 {
-                return Err(lx.err(format!("α{i} of g-dart {} is {v}: expected a g-dart index", out.len())));
+                return Err(lx.err(format!("g-dart {}: α index {v} is not a g-dart number", out.len())));
             }
             *a = v as u32;
         }
-        for k in 0..4 {
-            lx.parse::<i64>(&format!("mark byte {k}"))?;
+        for _ in 0..4 {
+            lx.int("a mark byte (integer)")?;
         }
         let p: i64 = lx.parse("the point flag (0 or 1)")?;
         let point = match p {
