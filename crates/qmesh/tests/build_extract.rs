@@ -2,6 +2,8 @@
 //! node order (positive volume), other volumes become polyhedra, inverted cells are
 //! counted and flipped on request, and the map costs 24 bytes per dart.
 
+mod common;
+
 use qmesh::build::{BuildOptions, CellKind, IndexedMesh, build_volume_map, extract};
 use qmesh::cmap::CMap3;
 use qmesh::geom::signed_volume_of_table;
@@ -23,17 +25,7 @@ fn zoo() -> IndexedMesh {
         &[[0., 0., 0.], [0., 1., 0.], [1., 0., 0.], [0., 0., 1.], [0., 1., 1.], [1., 0., 1.]],
         4.0,
     );
-    let cube = [
-        [0., 0., 0.],
-        [1., 0., 0.],
-        [1., 1., 0.],
-        [0., 1., 0.],
-        [0., 0., 1.],
-        [1., 0., 1.],
-        [1., 1., 1.],
-        [0., 1., 1.],
-    ];
-    add(&mut m, CellKind::Hex, &cube, 6.0);
+    add(&mut m, CellKind::Hex, &common::UNIT_CUBE, 6.0);
     // An octagonal prism as a VTK polyhedron (outward faces).
     let base = m.points.len() as u32;
     for z in [0.0, 1.0] {

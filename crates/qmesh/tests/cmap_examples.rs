@@ -11,6 +11,18 @@ fn assert_valid(m: &CMap3) {
     assert!(v.is_empty(), "invalid map: {}", v.iter().map(|x| x.to_string()).collect::<Vec<_>>().join("; "));
 }
 
+/// Two unit cubes sharing the face x = 1 (vertex ids shared, not yet 3-sewn): the map,
+/// the first cube's vertex ids and one dart of each cube.
+fn two_cubes() -> (CMap3, [u32; 8], Dart, Dart) {
+    let mut m = CMap3::new();
+    let a = unit_cube_vertices(&mut m, 0.0);
+    let far = unit_cube_vertices(&mut m, 1.0);
+    let b = [a[1], far[1], far[2], a[2], a[5], far[5], far[6], a[6]];
+    let c1 = m.make_hexahedron(a);
+    let c2 = m.make_hexahedron(b);
+    (m, a, c1, c2)
+}
+
 /// Finds the dart of `face_of` whose origin is `from` and target `to`.
 fn dart_from_to(m: &CMap3, vol: Dart, from: u32, to: u32) -> Dart {
     m.orbit(vol, Orbit::Volume)
@@ -95,12 +107,7 @@ fn paper_2025_fig1_prism_and_tet() {
 
 #[test]
 fn split_edge_across_two_cubes_keeps_marks_on_original_half() {
-    let mut m = CMap3::new();
-    let a = unit_cube_vertices(&mut m, 0.0);
-    let far = unit_cube_vertices(&mut m, 1.0);
-    let b = [a[1], far[1], far[2], a[2], a[5], far[5], far[6], a[6]];
-    let c1 = m.make_hexahedron(a);
-    let c2 = m.make_hexahedron(b);
+    let (mut m, a, c1, c2) = two_cubes();
     let da = dart_from_to(&m, c1, a[2], a[1]);
     m.sew3(da, dart_from_to(&m, c2, a[1], a[2])).unwrap();
     let flag = m.reserve_mark().unwrap();
@@ -125,12 +132,7 @@ fn split_edge_across_two_cubes_keeps_marks_on_original_half() {
 
 #[test]
 fn sew_unsew_and_errors() {
-    let mut m = CMap3::new();
-    let a = unit_cube_vertices(&mut m, 0.0);
-    let far = unit_cube_vertices(&mut m, 1.0);
-    let b = [a[1], far[1], far[2], a[2], a[5], far[5], far[6], a[6]];
-    let c1 = m.make_hexahedron(a);
-    let c2 = m.make_hexahedron(b);
+    let (mut m, a, c1, c2) = two_cubes();
     let da = dart_from_to(&m, c1, a[2], a[1]);
     let db = dart_from_to(&m, c2, a[1], a[2]);
     m.sew3(da, db).unwrap();

@@ -39,18 +39,7 @@ fn apply(m: &mut CMap3, op: &Op) {
     let before = m.count_cells();
     match *op {
         Op::AddHex(o) => {
-            let x = o as f64 * 2.0;
-            let c = [
-                [0., 0., 0.],
-                [1., 0., 0.],
-                [1., 1., 0.],
-                [0., 1., 0.],
-                [0., 0., 1.],
-                [1., 0., 1.],
-                [1., 1., 1.],
-                [0., 1., 1.],
-            ];
-            let v = c.map(|p| m.add_vertex([p[0] + x, p[1], p[2]]));
+            let v = common::unit_cube_vertices(m, o as f64 * 2.0);
             m.make_hexahedron(v);
             let a = m.count_cells();
             assert_eq!(

@@ -31,19 +31,13 @@ pub fn data_files(sub: &str) -> Vec<PathBuf> {
     v
 }
 
+/// The unit cube's corners in VTK hexahedron order.
+pub const UNIT_CUBE: [[f64; 3]; 8] =
+    [[0., 0., 0.], [1., 0., 0.], [1., 1., 0.], [0., 1., 0.], [0., 0., 1.], [1., 0., 1.], [1., 1., 1.], [0., 1., 1.]];
+
 /// Adds the 8 corners of the unit cube shifted by `x0` along x, in VTK hex order.
 pub fn unit_cube_vertices(m: &mut qmesh::cmap::CMap3, x0: f64) -> [u32; 8] {
-    let c = [
-        [0., 0., 0.],
-        [1., 0., 0.],
-        [1., 1., 0.],
-        [0., 1., 0.],
-        [0., 0., 1.],
-        [1., 0., 1.],
-        [1., 1., 1.],
-        [0., 1., 1.],
-    ];
-    c.map(|p| m.add_vertex([p[0] + x0, p[1], p[2]]))
+    UNIT_CUBE.map(|p| m.add_vertex([p[0] + x0, p[1], p[2]]))
 }
 
 /// A fresh temporary folder for one test.
