@@ -25,6 +25,8 @@ enum Command {
     Convert(cmd::convert::Args),
     /// Writes built-in meshes (structured hex or tet grids).
     Generate(cmd::generate::Args),
+    /// Query-replace (2022): split edges, replace matching faces, then volumes.
+    Replace(cmd::replace::Args),
     /// Pattern sets: audit (kinds, signatures, automorphisms, duplicates).
     Patterns(cmd::patterns::Args),
     /// A short tour on built-in inputs: generate, inspect, split edges, write files.
@@ -40,6 +42,7 @@ fn main() -> ExitCode {
         Command::Generate(a) => cmd::generate::run(a),
         Command::Demo(a) => cmd::demo::run(a),
         Command::Patterns(a) => cmd::patterns::run(a),
+        Command::Replace(a) => cmd::replace::run(a),
     };
     match result {
         Ok(code) => code,

@@ -11,4 +11,5 @@ pub mod generate;
 pub mod geom;
 pub mod io;
 pub mod pattern;
+pub mod replace;
 pub mod signature;

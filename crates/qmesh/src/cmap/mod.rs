@@ -13,6 +13,7 @@ mod dart;
 mod error;
 mod marks;
 mod orbit;
+mod orientation;
 mod remove;
 mod sew;
 mod split;

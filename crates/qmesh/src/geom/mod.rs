@@ -1,7 +1,9 @@
 //! Geometry attached to vertices: vector helpers and signed volumes.
 
+mod mvc;
 mod volume;
 
+pub use mvc::{mvc_polygon, mvc_triangles};
 pub use volume::{signed_volume_of_faces, signed_volume_of_map_volume, signed_volume_of_table};
 
 /// a − b.

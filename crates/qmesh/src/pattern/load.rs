@@ -4,12 +4,14 @@
 use std::path::Path;
 
 use super::flags::{FlagRule, flag_corners};
+use super::geometry::{interior_coordinates, total_volume};
 use super::{Pattern, PatternKind};
 use crate::build::{BuildOptions, build_map};
 use crate::cmap::{CMap3, Dart};
 use crate::io::{IoError, Loaded, read};
 use crate::signature::{
-    Flags, Surface, cycle_automorphisms, pattern_face_boundary, pattern_face_signature, volume_signature, word_from,
+    Flags, Surface, cycle_automorphisms, pattern_face_boundary, pattern_face_signature, volume_signature_from,
+    word_from,
 };
 
 /// Why a file is not a usable pattern.
@@ -89,20 +91,27 @@ fn finish(
     boundary: Vec<Dart>,
     rule: FlagRule,
 ) -> Result<Pattern, PatternError> {
+    if kind == PatternKind::Volume && total_volume(&map) < 0.0 {
+        // Moka files keep an arbitrary orientation class: bring the pattern to the map
+        // convention so that its cells keep positive volumes once inserted.
+        map.reverse_orientation();
+    }
     let mark = map.reserve_mark().map_err(|e| invalid(path, e.to_string()))?;
     if rule == FlagRule::Corners {
         flag_corners(&mut map, mark, &boundary, kind == PatternKind::Face);
     }
     let flags = Flags::Mark(mark);
-    let (signature, automorphisms) = match kind {
+    let (signature, automorphisms, start) = match kind {
         PatternKind::Face => {
             let sig = pattern_face_signature(&map, flags, boundary[0]).expect("boundary checked above");
             let f: Vec<bool> = boundary.iter().map(|&d| flags.get(&map, d)).collect();
-            (sig, cycle_automorphisms(&f))
+            (sig, cycle_automorphisms(&f), boundary[0])
         }
-        PatternKind::Volume => volume_signature(&map, Surface::PatternBoundary, flags, boundary[0])
+        PatternKind::Volume => volume_signature_from(&map, Surface::PatternBoundary, flags, boundary[0])
             .ok_or_else(|| invalid(path, "the boundary surface is open"))?,
     };
+    let interior = interior_coordinates(&map, kind, &boundary);
+    let cycle = if kind == PatternKind::Face { boundary.clone() } else { Vec::new() };
     Ok(Pattern {
         file: path.to_path_buf(),
         kind,
@@ -112,5 +121,8 @@ fn finish(
         flags: mark,
         signature,
         automorphisms,
+        start,
+        cycle,
+        interior,
     })
 }

@@ -3,6 +3,7 @@
 
 mod audit;
 mod flags;
+mod geometry;
 mod load;
 mod set;
 
@@ -49,4 +50,18 @@ pub struct Pattern {
     pub signature: Signature,
     /// Flag-preserving automorphisms of the boundary (1 = a unique placement).
     pub automorphisms: usize,
+    /// v-patterns: the canonical start dart of the signature traversal.
+    pub start: Dart,
+    /// f-patterns: the boundary cycle of 2-free darts, in order from `boundary`.
+    pub cycle: Vec<Dart>,
+    /// Interior vertices and their mean value coordinates over boundary vertices
+    /// (2022 §5.2), computed once.
+    pub interior: Vec<InteriorVertex>,
+}
+
+/// A vertex inside a pattern, as weights over the pattern's boundary vertices.
+#[derive(Clone, Debug)]
+pub struct InteriorVertex {
+    pub vertex: u32,
+    pub weights: Vec<(u32, f64)>,
 }

@@ -40,6 +40,11 @@ impl PatternSet {
         self.index.get(s).map(|v| &self.patterns[v[0]])
     }
 
+    /// Index of the pattern whose boundary has this signature.
+    pub fn lookup_index(&self, s: &Signature) -> Option<usize> {
+        self.index.get(s).map(|v| v[0])
+    }
+
     /// Groups of patterns (indices) sharing one signature.
     pub fn duplicates(&self) -> Vec<Vec<usize>> {
         let mut d: Vec<Vec<usize>> = self.index.values().filter(|v| v.len() > 1).cloned().collect();

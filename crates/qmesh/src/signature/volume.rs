@@ -78,22 +78,34 @@ pub fn match_direct(a: (&CMap3, Surface, Flags, Dart), b: (&CMap3, Surface, Flag
 /// volume) and its automorphism count (start darts giving the minimal word), or None
 /// when the surface is not closed. With flags, only flagged darts start traversals.
 pub fn volume_signature(map: &CMap3, surface: Surface, flags: Flags, any: Dart) -> Option<(Signature, usize)> {
+    volume_signature_from(map, surface, flags, any).map(|(s, n, _)| (s, n))
+}
+
+/// As [`volume_signature`], also returning the first start dart that gives the minimal
+/// word: traversals of two isomorphic surfaces from their canonical starts list
+/// corresponding darts in the same order.
+pub fn volume_signature_from(
+    map: &CMap3,
+    surface: Surface,
+    flags: Flags,
+    any: Dart,
+) -> Option<(Signature, usize, Dart)> {
     let all = word_from(map, surface, flags, any, None)?.darts;
     let flagged: Vec<Dart> = all.iter().copied().filter(|&d| flags.get(map, d)).collect();
     let starts = if flagged.is_empty() { all } else { flagged };
-    let mut best: Option<Vec<u32>> = None;
+    let mut best: Option<(Vec<u32>, Dart)> = None;
     let mut count = 0;
     for &s in &starts {
-        let Some(w) = word_from(map, surface, flags, s, best.as_deref()) else { continue };
+        let Some(w) = word_from(map, surface, flags, s, best.as_ref().map(|b| b.0.as_slice())) else { continue };
         let full: Vec<u32> = w.word.iter().chain(&w.bits).copied().collect();
-        match best.as_ref().map(|b| full.cmp(b)) {
+        match best.as_ref().map(|b| full.cmp(&b.0)) {
             None | Some(std::cmp::Ordering::Less) => {
-                best = Some(full);
+                best = Some((full, s));
                 count = 1;
             }
             Some(std::cmp::Ordering::Equal) => count += 1,
             Some(std::cmp::Ordering::Greater) => {}
         }
     }
-    best.map(|b| (Signature::Volume(b), count))
+    best.map(|(b, s)| (Signature::Volume(b), count, s))
 }

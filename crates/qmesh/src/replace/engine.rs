@@ -1,0 +1,130 @@
+//! The query-replace pipeline (2022 §4, §5): split every edge (e-pattern), then replace
+//! every face matching an f-pattern, then every volume matching a v-pattern. Each cell
+//! is replaced at most once, so the result does not depend on the order.
+
+use std::time::Instant;
+
+use super::face::{align_face, replace_face};
+use super::volume::replace_volume;
+use crate::cmap::{CMap3, Dart, MapError, Orbit};
+use crate::pattern::{FlagRule, PatternKind, PatternSet};
+use crate::signature::{Flags, Surface, face_signature, match_direct, volume_signature_from};
+
+/// Options of [`query_replace`].
+#[derive(Clone, Copy, Debug)]
+pub struct ReplaceOptions {
+    /// Split every edge into this many segments first (the e-pattern).
+    pub split_edges: Option<usize>,
+    /// Flags on the input: `Corners` flags every original dart (edge splits add unflagged darts).
+    pub flags: FlagRule,
+    /// Look patterns up by signature (hash map) rather than testing each one directly.
+    pub use_signatures: bool,
+}
+
+impl Default for ReplaceOptions {
+    fn default() -> Self {
+        ReplaceOptions { split_edges: None, flags: FlagRule::Corners, use_signatures: true }
+    }
+}
+
+/// What [`query_replace`] did.
+#[derive(Clone, Debug, Default)]
+pub struct ReplaceReport {
+    pub edges_split: usize,
+    /// Matches per pattern (indices of the set).
+    pub matches: Vec<usize>,
+    pub faces_replaced: usize,
+    pub volumes_replaced: usize,
+    pub unmatched_faces: usize,
+    pub unmatched_volumes: usize,
+    pub query_seconds: f64,
+    pub replace_seconds: f64,
+}
+
+/// Runs the e, f and v query-replace passes on `map` with the patterns of `set`.
+///
+/// # Errors
+/// Only from the edge split (k = 0).
+pub fn query_replace(map: &mut CMap3, set: &PatternSet, opts: &ReplaceOptions) -> Result<ReplaceReport, MapError> {
+    let mut r = ReplaceReport { matches: vec![0; set.patterns.len()], ..Default::default() };
+    let mark = map.reserve_mark()?;
+    if opts.flags == FlagRule::Corners {
+        for d in map.darts().collect::<Vec<_>>() {
+            map.mark(d, mark);
+        }
+    }
+    let flags = Flags::Mark(mark);
+    let t = Instant::now();
+    if let Some(k) = opts.split_edges {
+        r.edges_split = map.split_all_edges(k)?;
+    }
+    r.replace_seconds += t.elapsed().as_secs_f64();
+    let has = |k: PatternKind| set.count(k) > 0;
+    if has(PatternKind::Face) {
+        for d in map.cells(Orbit::Face).collect::<Vec<_>>() {
+            let t = Instant::now();
+            let found = find_face(map, set, flags, d, opts.use_signatures);
+            r.query_seconds += t.elapsed().as_secs_f64();
+            let t = Instant::now();
+            match found {
+                Some((i, aligned)) => {
+                    replace_face(map, &set.patterns[i], &aligned);
+                    r.matches[i] += 1;
+                    r.faces_replaced += 1;
+                }
+                None => r.unmatched_faces += 1,
+            }
+            r.replace_seconds += t.elapsed().as_secs_f64();
+        }
+    }
+    if has(PatternKind::Volume) {
+        for d in map.cells(Orbit::Volume).collect::<Vec<_>>() {
+            let t = Instant::now();
+            let found = find_volume(map, set, flags, d, opts.use_signatures);
+            r.query_seconds += t.elapsed().as_secs_f64();
+            let t = Instant::now();
+            match found.and_then(|(i, start)| replace_volume(map, &set.patterns[i], start, flags).map(|_| i)) {
+                Some(i) => {
+                    r.matches[i] += 1;
+                    r.volumes_replaced += 1;
+                }
+                None => r.unmatched_volumes += 1,
+            }
+            r.replace_seconds += t.elapsed().as_secs_f64();
+        }
+    }
+    map.free_mark(mark);
+    Ok(r)
+}
+
+/// The f-pattern matching the face of `d` (either side when it is 3-sewn) and the
+/// target darts aligned with its boundary.
+fn find_face(map: &CMap3, set: &PatternSet, flags: Flags, d: Dart, by_signature: bool) -> Option<(usize, Vec<Dart>)> {
+    let sides = [Some(d), map.beta(d, 3)];
+    for side in sides.into_iter().flatten() {
+        let candidates: Vec<usize> = if by_signature {
+            set.lookup_index(&face_signature(map, flags, side)).into_iter().collect()
+        } else {
+            (0..set.patterns.len()).filter(|&i| set.patterns[i].kind == PatternKind::Face).collect()
+        };
+        for i in candidates {
+            if let Some(aligned) = align_face(map, flags, side, &set.patterns[i]) {
+                return Some((i, aligned));
+            }
+        }
+    }
+    None
+}
+
+/// The v-pattern matching the volume of `d`, and the target dart corresponding to the
+/// pattern's canonical start.
+fn find_volume(map: &CMap3, set: &PatternSet, flags: Flags, d: Dart, by_signature: bool) -> Option<(usize, Dart)> {
+    if by_signature {
+        let (sig, _, start) = volume_signature_from(map, Surface::Cell, flags, d)?;
+        return set.lookup_index(&sig).map(|i| (i, start));
+    }
+    set.patterns.iter().enumerate().filter(|(_, p)| p.kind == PatternKind::Volume).find_map(|(i, p)| {
+        match_direct((&p.map, Surface::PatternBoundary, Flags::Mark(p.flags), p.start), (map, Surface::Cell, flags, d))
+            .map(|t| (i, t))
+    })
+}
