@@ -99,7 +99,13 @@ pub fn query_replace(map: &mut CMap3, set: &PatternSet, opts: &ReplaceOptions) -
 
 /// The f-pattern matching the face of `d` (either side when it is 3-sewn) and the
 /// target darts aligned with its boundary.
-fn find_face(map: &CMap3, set: &PatternSet, flags: Flags, d: Dart, by_signature: bool) -> Option<(usize, Vec<Dart>)> {
+pub fn find_face(
+    map: &CMap3,
+    set: &PatternSet,
+    flags: Flags,
+    d: Dart,
+    by_signature: bool,
+) -> Option<(usize, Vec<Dart>)> {
     let sides = [Some(d), map.beta(d, 3)];
     for side in sides.into_iter().flatten() {
         let candidates: Vec<usize> = if by_signature {
@@ -118,7 +124,7 @@ fn find_face(map: &CMap3, set: &PatternSet, flags: Flags, d: Dart, by_signature:
 
 /// The v-pattern matching the volume of `d`, and the target dart corresponding to the
 /// pattern's canonical start.
-fn find_volume(map: &CMap3, set: &PatternSet, flags: Flags, d: Dart, by_signature: bool) -> Option<(usize, Dart)> {
+pub fn find_volume(map: &CMap3, set: &PatternSet, flags: Flags, d: Dart, by_signature: bool) -> Option<(usize, Dart)> {
     if by_signature {
         let (sig, _, start) = volume_signature_from(map, Surface::Cell, flags, d)?;
         return set.lookup_index(&sig).map(|i| (i, start));

@@ -1,7 +1,7 @@
 //! v-signatures: words of a labelled breadth-first traversal of a closed surface
 //! (2022 Algorithm 2 and Definition 6), minimised over start darts, flag bits appended.
 
-use rustc_hash::FxHashMap;
+use std::cell::RefCell;
 
 use super::{Flags, Signature, Surface};
 use crate::cmap::{CMap3, Dart};
@@ -26,9 +26,56 @@ pub fn word_from(
     start: Dart,
     bound: Option<&[u32]>,
 ) -> Option<VolumeWord> {
-    let mut label: FxHashMap<Dart, u32> = FxHashMap::default();
+    with_labels(map, |labels| word_with(map, surface, flags, start, bound, labels))
+}
+
+thread_local! {
+    /// Label of each dart during one traversal (0 = unlabelled), indexed by raw dart
+    /// index and reset after every traversal: one table per thread, grown on demand.
+    static LABELS: RefCell<Vec<u32>> = const { RefCell::new(Vec::new()) };
+}
+
+/// Runs `f` with this thread's label table, large enough for `map`.
+fn with_labels<R>(map: &CMap3, f: impl FnOnce(&mut Vec<u32>) -> R) -> R {
+    LABELS.with(|l| {
+        let mut l = l.borrow_mut();
+        if l.len() < map.dart_capacity() {
+            l.resize(map.dart_capacity(), 0);
+        }
+        f(&mut l)
+    })
+}
+
+/// [`word_from`] on a label table that is all zeros on entry and left so on exit.
+fn word_with(
+    map: &CMap3,
+    surface: Surface,
+    flags: Flags,
+    start: Dart,
+    bound: Option<&[u32]>,
+    label: &mut [u32],
+) -> Option<VolumeWord> {
     let mut out = VolumeWord::default();
-    label.insert(start, 1);
+    let result = label_traversal(map, surface, start, bound, label, &mut out);
+    for d in &out.darts {
+        label[d.idx()] = 0;
+    }
+    result?;
+    out.bits = out.darts.iter().map(|&d| flags.get(map, d) as u32).collect();
+    Some(out)
+}
+
+/// The traversal proper: fills `out.darts` and `out.word`; None when the surface is
+/// open or the word exceeds `bound`.
+fn label_traversal(
+    map: &CMap3,
+    surface: Surface,
+    start: Dart,
+    bound: Option<&[u32]>,
+    label: &mut [u32],
+    out: &mut VolumeWord,
+) -> Option<()> {
+    label[start.idx()] = 1;
     out.darts.push(start);
     let mut k = 0;
     let mut below = false; // the word is already strictly below the bound
@@ -37,17 +84,16 @@ pub fn word_from(
         k += 1;
         for n in [Some(map.next(d)), surface.opposite(map, d)] {
             let n = n?;
-            let next = out.darts.len() as u32 + 1;
-            let l = *label.entry(n).or_insert_with(|| {
+            if label[n.idx()] == 0 {
                 out.darts.push(n);
-                next
-            });
+                label[n.idx()] = out.darts.len() as u32;
+            }
+            let l = label[n.idx()];
             out.word.push(l);
             if let Some(b) = bound
                 && !below
             {
-                let i = out.word.len() - 1;
-                match b.get(i).map(|&x| l.cmp(&x)) {
+                match b.get(out.word.len() - 1).map(|&x| l.cmp(&x)) {
                     Some(std::cmp::Ordering::Less) => below = true,
                     Some(std::cmp::Ordering::Greater) | None => return None,
                     Some(std::cmp::Ordering::Equal) => {}
@@ -55,8 +101,7 @@ pub fn word_from(
             }
         }
     }
-    out.bits = out.darts.iter().map(|&d| flags.get(map, d) as u32).collect();
-    Some(out)
+    Some(())
 }
 
 /// The direct isomorphism test of 2022 §2.3 (no signature): the word of surface A from
@@ -90,13 +135,24 @@ pub fn volume_signature_from(
     flags: Flags,
     any: Dart,
 ) -> Option<(Signature, usize, Dart)> {
-    let all = word_from(map, surface, flags, any, None)?.darts;
+    with_labels(map, |label| signature_with(map, surface, flags, any, label))
+}
+
+fn signature_with(
+    map: &CMap3,
+    surface: Surface,
+    flags: Flags,
+    any: Dart,
+    label: &mut [u32],
+) -> Option<(Signature, usize, Dart)> {
+    let all = word_with(map, surface, flags, any, None, label)?.darts;
     let flagged: Vec<Dart> = all.iter().copied().filter(|&d| flags.get(map, d)).collect();
     let starts = if flagged.is_empty() { all } else { flagged };
     let mut best: Option<(Vec<u32>, Dart)> = None;
     let mut count = 0;
     for &s in &starts {
-        let Some(w) = word_from(map, surface, flags, s, best.as_ref().map(|b| b.0.as_slice())) else { continue };
+        let bound = best.as_ref().map(|b| b.0.as_slice());
+        let Some(w) = word_with(map, surface, flags, s, bound, label) else { continue };
         let full: Vec<u32> = w.word.iter().chain(&w.bits).copied().collect();
         match best.as_ref().map(|b| full.cmp(&b.0)) {
             None | Some(std::cmp::Ordering::Less) => {
