@@ -134,3 +134,17 @@ fn signatures_and_direct_matching_give_the_same_mesh() {
         assert!(b.is_valid().is_empty());
     }
 }
+
+/// Each of the 325 transition configurations (a pattern's boundary as one cell, flagged
+/// by the same geometric rule) is matched by exactly its own pattern.
+#[test]
+fn each_transition_configuration_matches_its_own_pattern() {
+    let Some(set) = patterns("hexa-325-patterns") else { return };
+    let mesh = qmesh::pattern::boundaries_mesh(&set, 1);
+    let (mut m, _) = qmesh::build::build_volume_map(&mesh, &BuildOptions::default()).unwrap();
+    let r = query_replace(&mut m, &set, &ReplaceOptions { flags: FlagRule::Geometric, ..Default::default() }).unwrap();
+    assert_eq!(r.unmatched_volumes, 0);
+    assert!(r.matches.iter().all(|&n| n == 1), "every pattern matches exactly once");
+    assert!(m.is_valid().is_empty());
+    assert_positive_volumes(&m, "325 configurations");
+}

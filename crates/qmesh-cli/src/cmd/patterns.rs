@@ -5,7 +5,8 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use anyhow::Result;
-use qmesh::pattern::{FlagRule, PatternKind, audit, load_pattern_dir};
+use qmesh::io::{Format, WriteOptions, write_indexed};
+use qmesh::pattern::{FlagRule, PatternKind, audit, boundaries_mesh, load_pattern_dir};
 use serde_json::json;
 
 #[derive(clap::Args, Debug)]
@@ -28,11 +29,27 @@ pub enum Action {
         #[arg(long, default_value = "corners")]
         flags: Flags,
     },
+    /// Write the boundary of every v-pattern as one polyhedral cell (side by side), e.g.
+    /// to look at the configurations a set covers or to benchmark matching.
+    Boundaries {
+        /// A patterns folder or file.
+        dir: PathBuf,
+        /// Output mesh (VTK: cells are polyhedra).
+        #[arg(short, long)]
+        output: PathBuf,
+        /// Copies of each boundary.
+        #[arg(long, default_value_t = 1)]
+        copies: usize,
+    },
 }
 
+/// Flag rule: `corners` (patterns by geometry, input darts all flagged before edge
+/// splits, as in the papers), `geometric` (input cells by the same geometric rule as
+/// patterns), `none`.
 #[derive(clap::ValueEnum, Clone, Copy, Debug)]
 pub enum Flags {
     Corners,
+    Geometric,
     None,
 }
 
@@ -40,13 +57,17 @@ impl From<Flags> for FlagRule {
     fn from(f: Flags) -> FlagRule {
         match f {
             Flags::Corners => FlagRule::Corners,
+            Flags::Geometric => FlagRule::Geometric,
             Flags::None => FlagRule::None,
         }
     }
 }
 
 pub fn run(a: Args) -> Result<ExitCode> {
-    let Action::Audit { dir, json: as_json, flags } = a.action;
+    let (dir, as_json, flags) = match a.action {
+        Action::Audit { dir, json, flags } => (dir, json, flags),
+        Action::Boundaries { dir, output, copies } => return boundaries(&dir, &output, copies),
+    };
     let t = std::time::Instant::now();
     let set = load_pattern_dir(&dir, flags.into());
     let report = audit(&set);
@@ -86,4 +107,14 @@ pub fn run(a: Args) -> Result<ExitCode> {
         }
     }
     Ok(if report.duplicates.is_empty() { ExitCode::SUCCESS } else { ExitCode::from(1) })
+}
+
+/// `qmesh patterns boundaries`: each v-pattern's boundary as a VTK polyhedron.
+fn boundaries(dir: &std::path::Path, output: &std::path::Path, copies: usize) -> Result<ExitCode> {
+    let set = load_pattern_dir(dir, FlagRule::None);
+    let mesh = boundaries_mesh(&set, copies);
+    write_indexed(output, &mesh, Format::Vtk, &WriteOptions::default())?;
+    let n = mesh.nb_cells();
+    println!("wrote {} ({n} cells, the boundaries of {} v-patterns)", output.display(), set.count(PatternKind::Volume));
+    Ok(ExitCode::SUCCESS)
 }

@@ -13,6 +13,9 @@ pub enum FlagRule {
     Corners,
     /// No flags: signatures are purely topological.
     None,
+    /// Input volumes are flagged by the same geometric corner rule as patterns (for
+    /// meshes whose cells are configurations, e.g. pattern boundaries).
+    Geometric,
 }
 
 /// Sine of the angular tolerance (0.1°) under which two directions count as parallel.
@@ -50,6 +53,12 @@ fn face_normal(map: &CMap3, d: Dart) -> [f64; 3] {
 /// faces) whose origin is a corner (boundary normals around it span 3 dimensions).
 /// Returns the number of flagged darts.
 pub fn flag_corners(map: &mut CMap3, mark: Mark, boundary: &[Dart], face_pattern: bool) -> usize {
+    flag_corners_on(map, mark, boundary, face_pattern, Surface::PatternBoundary)
+}
+
+/// [`flag_corners`] for the darts of a closed surface read as `surface` (a pattern
+/// boundary, or one input volume with [`Surface::Cell`]).
+pub fn flag_corners_on(map: &mut CMap3, mark: Mark, boundary: &[Dart], face_pattern: bool, surface: Surface) -> usize {
     let flagged: Vec<Dart> = if face_pattern {
         let cycle = pattern_face_boundary(map, boundary[0]).unwrap_or_default();
         let n = cycle.len();
@@ -83,7 +92,7 @@ pub fn flag_corners(map: &mut CMap3, mark: Mark, boundary: &[Dart], face_pattern
             .iter()
             .copied()
             .filter(|&d| {
-                let Some(o) = Surface::PatternBoundary.opposite(map, d) else { return false };
+                let Some(o) = surface.opposite(map, d) else { return false };
                 corner(map.vertex_of(d)) && not_parallel(normal[&d], normal.get(&o).copied().unwrap_or([0.0; 3]))
             })
             .collect()

@@ -97,7 +97,7 @@ fn finish(
         map.reverse_orientation();
     }
     let mark = map.reserve_mark().map_err(|e| invalid(path, e.to_string()))?;
-    if rule == FlagRule::Corners {
+    if rule != FlagRule::None {
         flag_corners(&mut map, mark, &boundary, kind == PatternKind::Face);
     }
     let flags = Flags::Mark(mark);

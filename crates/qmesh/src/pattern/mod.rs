@@ -2,13 +2,15 @@
 //! interior replaces the match; pattern sets keyed by signature; audits (§6.4).
 
 mod audit;
+mod boundaries;
 mod flags;
 mod geometry;
 mod load;
 mod set;
 
 pub use audit::{Audit, AuditEntry, audit};
-pub use flags::{FlagRule, flag_corners};
+pub use boundaries::boundaries_mesh;
+pub use flags::{FlagRule, flag_corners, flag_corners_on};
 pub use load::{PatternError, load_pattern};
 pub use set::{PatternSet, Skipped, load_pattern_dir};
 

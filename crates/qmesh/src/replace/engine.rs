@@ -7,7 +7,7 @@ use std::time::Instant;
 use super::face::{align_face, replace_face};
 use super::volume::replace_volume;
 use crate::cmap::{CMap3, Dart, MapError, Orbit};
-use crate::pattern::{FlagRule, PatternKind, PatternSet};
+use crate::pattern::{FlagRule, PatternKind, PatternSet, flag_corners_on};
 use crate::signature::{Flags, Surface, face_signature, match_direct, volume_signature_from};
 
 /// Options of [`query_replace`].
@@ -48,10 +48,19 @@ pub struct ReplaceReport {
 pub fn query_replace(map: &mut CMap3, set: &PatternSet, opts: &ReplaceOptions) -> Result<ReplaceReport, MapError> {
     let mut r = ReplaceReport { matches: vec![0; set.patterns.len()], ..Default::default() };
     let mark = map.reserve_mark()?;
-    if opts.flags == FlagRule::Corners {
-        for d in map.darts().collect::<Vec<_>>() {
-            map.mark(d, mark);
+    match opts.flags {
+        FlagRule::Corners => {
+            for d in map.darts().collect::<Vec<_>>() {
+                map.mark(d, mark);
+            }
         }
+        FlagRule::Geometric => {
+            for v in map.cells(Orbit::Volume).collect::<Vec<_>>() {
+                let darts = map.orbit(v, Orbit::Volume);
+                flag_corners_on(map, mark, &darts, false, Surface::Cell);
+            }
+        }
+        FlagRule::None => {}
     }
     let flags = Flags::Mark(mark);
     let t = Instant::now();
