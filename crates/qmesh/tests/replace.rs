@@ -148,3 +148,22 @@ fn each_transition_configuration_matches_its_own_pattern() {
     assert!(m.is_valid().is_empty());
     assert_positive_volumes(&m, "325 configurations");
 }
+
+/// Coverage (2022 §6.4): the hex subdivision set on a tet mesh leaves every face and
+/// volume uncovered, in exactly two configurations — the split triangle (the signature of
+/// the tetra-to-hexa f-pattern) and the split tetrahedron.
+#[test]
+fn coverage_lists_the_configurations_no_pattern_matches() {
+    let (Some(hex8), Some(tet)) = (patterns("hexa-8-subdivision"), patterns("tetra-to-hexa")) else { return };
+    let mut m = load(&common::data_dir().unwrap().join("tet/CAD0.mesh"));
+    let before = m.count_cells();
+    let r = run(&mut m, &hex8, 2);
+    assert_eq!((r.faces_replaced, r.volumes_replaced), (0, 0));
+    assert_eq!(r.uncovered.len(), 2);
+    let face = r.uncovered.iter().find(|u| u.kind == qmesh::pattern::PatternKind::Face).unwrap();
+    assert_eq!(face.count, before.faces);
+    let tri = tet.patterns.iter().find(|p| p.kind == qmesh::pattern::PatternKind::Face).unwrap();
+    assert_eq!(face.signature, tri.signature);
+    let vol = r.uncovered.iter().find(|u| u.kind == qmesh::pattern::PatternKind::Volume).unwrap();
+    assert_eq!(vol.count, before.volumes);
+}

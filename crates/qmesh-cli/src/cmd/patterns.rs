@@ -5,8 +5,10 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use anyhow::Result;
-use qmesh::io::{Format, WriteOptions, write_indexed};
+use qmesh::build::BuildOptions;
+use qmesh::io::{Format, WriteOptions, load_map, write_indexed};
 use qmesh::pattern::{FlagRule, PatternKind, audit, boundaries_mesh, load_pattern_dir};
+use qmesh::replace::{ReplaceOptions, Uncovered, query_replace};
 use serde_json::json;
 
 #[derive(clap::Args, Debug)]
@@ -28,6 +30,13 @@ pub enum Action {
         /// Pattern flags: `corners` (the papers' rule) or `none`.
         #[arg(long, default_value = "corners")]
         flags: Flags,
+        /// Coverage: run the set on this mesh (nothing is written) and list every face or
+        /// volume configuration that no pattern matches.
+        #[arg(long)]
+        against: Option<PathBuf>,
+        /// With --against: split every edge into K segments first.
+        #[arg(long)]
+        split_edges: Option<usize>,
     },
     /// Write the boundary of every v-pattern as one polyhedral cell (side by side), e.g.
     /// to look at the configurations a set covers or to benchmark matching.
@@ -64,13 +73,21 @@ impl From<Flags> for FlagRule {
 }
 
 pub fn run(a: Args) -> Result<ExitCode> {
-    let (dir, as_json, flags) = match a.action {
-        Action::Audit { dir, json, flags } => (dir, json, flags),
+    let (dir, as_json, flags, against, split_edges) = match a.action {
+        Action::Audit { dir, json, flags, against, split_edges } => (dir, json, flags, against, split_edges),
         Action::Boundaries { dir, output, copies } => return boundaries(&dir, &output, copies),
     };
     let t = std::time::Instant::now();
     let set = load_pattern_dir(&dir, flags.into());
     let report = audit(&set);
+    let coverage = match &against {
+        Some(mesh) => {
+            let mut m = load_map(mesh, None, &BuildOptions::default())?.map;
+            let opts = ReplaceOptions { split_edges, flags: flags.into(), use_signatures: true };
+            Some(query_replace(&mut m, &set, &opts)?)
+        }
+        None => None,
+    };
     let seconds = t.elapsed().as_secs_f64();
     if as_json {
         let j = json!({
@@ -81,6 +98,7 @@ pub fn run(a: Args) -> Result<ExitCode> {
             "duplicates": report.duplicates,
             "ambiguous": report.ambiguous,
             "skipped": report.skipped.iter().map(|(f, r)| json!({"file": f, "reason": r})).collect::<Vec<_>>(),
+            "uncovered": coverage.as_ref().map(|r| uncovered_json(&r.uncovered)),
             "f_patterns": set.count(PatternKind::Face),
             "v_patterns": set.count(PatternKind::Volume),
             "seconds": seconds,
@@ -105,6 +123,26 @@ pub fn run(a: Args) -> Result<ExitCode> {
         for g in &report.duplicates {
             println!("duplicate: {}", g.join(" = "));
         }
+        if let Some(r) = &coverage {
+            println!(
+                "coverage on {}: {} faces and {} volumes matched, {} faces and {} volumes in {} configurations uncovered",
+                against.as_ref().map(|p| p.display().to_string()).unwrap_or_default(),
+                r.faces_replaced,
+                r.volumes_replaced,
+                r.unmatched_faces,
+                r.unmatched_volumes,
+                r.uncovered.len()
+            );
+            for u in &r.uncovered {
+                println!(
+                    "uncovered {:<9} {}  ×{}  e.g. at {:?}",
+                    u.kind.name(),
+                    u.signature.digest(),
+                    u.count,
+                    u.sample
+                );
+            }
+        }
     }
     Ok(if report.duplicates.is_empty() { ExitCode::SUCCESS } else { ExitCode::from(1) })
 }
@@ -117,4 +155,13 @@ fn boundaries(dir: &std::path::Path, output: &std::path::Path, copies: usize) ->
     let n = mesh.nb_cells();
     println!("wrote {} ({n} cells, the boundaries of {} v-patterns)", output.display(), set.count(PatternKind::Volume));
     Ok(ExitCode::SUCCESS)
+}
+
+/// The uncovered configurations of a replace report as JSON.
+pub fn uncovered_json(u: &[Uncovered]) -> serde_json::Value {
+    serde_json::Value::Array(
+        u.iter()
+            .map(|u| json!({"kind": u.kind.name(), "signature": u.signature.digest(), "count": u.count, "sample": u.sample}))
+            .collect(),
+    )
 }

@@ -77,6 +77,7 @@ pub fn run(a: Args) -> Result<ExitCode> {
             "unmatched_faces": r.unmatched_faces,
             "unmatched_volumes": r.unmatched_volumes,
             "matches": set.patterns.iter().zip(&r.matches).map(|(p, n)| json!({"file": p.file.display().to_string(), "kind": p.kind.name(), "matches": n})).collect::<Vec<_>>(),
+            "uncovered": super::patterns::uncovered_json(&r.uncovered),
             "skipped_patterns": set.skipped.iter().map(|s| json!({"file": s.file.display().to_string(), "reason": s.reason})).collect::<Vec<_>>(),
             "volumes_before": before.volumes,
             "volumes": after.volumes,
@@ -112,6 +113,12 @@ pub fn run(a: Args) -> Result<ExitCode> {
             r.query_seconds,
             r.replace_seconds
         );
+        for u in r.uncovered.iter().take(10) {
+            println!("uncovered {:<9} {}  ×{}  e.g. at {:?}", u.kind.name(), u.signature.digest(), u.count, u.sample);
+        }
+        for s in &set.skipped {
+            println!("skipped pattern {}: {}", s.file.display(), s.reason);
+        }
         println!("wrote {}", a.output.display());
     }
     Ok(if violations.is_empty() { ExitCode::SUCCESS } else { ExitCode::from(1) })

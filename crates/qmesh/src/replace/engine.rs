@@ -8,7 +8,10 @@ use super::face::{align_face, replace_face};
 use super::volume::replace_volume;
 use crate::cmap::{CMap3, Dart, MapError, Orbit};
 use crate::pattern::{FlagRule, PatternKind, PatternSet, flag_corners_on};
-use crate::signature::{Flags, Surface, face_signature, match_direct, volume_signature_from};
+use rustc_hash::FxHashMap;
+
+use crate::geom::centroid;
+use crate::signature::{Flags, Signature, Surface, face_signature, match_direct, volume_signature_from};
 
 /// Options of [`query_replace`].
 #[derive(Clone, Copy, Debug)]
@@ -39,6 +42,44 @@ pub struct ReplaceReport {
     pub unmatched_volumes: usize,
     pub query_seconds: f64,
     pub replace_seconds: f64,
+    /// Configurations no pattern matched (2022 §6.4 coverage), most frequent first.
+    pub uncovered: Vec<Uncovered>,
+}
+
+/// A configuration (face or volume boundary) that no pattern matched.
+#[derive(Clone, Debug)]
+pub struct Uncovered {
+    pub kind: PatternKind,
+    pub signature: Signature,
+    /// How many cells have it.
+    pub count: usize,
+    /// The centroid of one such cell.
+    pub sample: [f64; 3],
+}
+
+/// Collects unmatched configurations by signature.
+#[derive(Default)]
+struct Coverage(FxHashMap<(PatternKind, Signature), (usize, [f64; 3])>);
+
+impl Coverage {
+    fn add(&mut self, map: &CMap3, kind: PatternKind, signature: Signature, d: Dart) {
+        let orbit = if kind == PatternKind::Face { Orbit::HalfFace } else { Orbit::Volume };
+        let e = self
+            .0
+            .entry((kind, signature))
+            .or_insert_with(|| (0, centroid(map.orbit(d, orbit).iter().map(|&x| map.point(x)))));
+        e.0 += 1;
+    }
+
+    fn into_list(self) -> Vec<Uncovered> {
+        let mut v: Vec<Uncovered> = self
+            .0
+            .into_iter()
+            .map(|((kind, signature), (count, sample))| Uncovered { kind, signature, count, sample })
+            .collect();
+        v.sort_by(|a, b| b.count.cmp(&a.count).then_with(|| a.signature.cmp(&b.signature)));
+        v
+    }
 }
 
 /// Runs the e, f and v query-replace passes on `map` with the patterns of `set`.
@@ -68,6 +109,7 @@ pub fn query_replace(map: &mut CMap3, set: &PatternSet, opts: &ReplaceOptions) -
         r.edges_split = map.split_all_edges(k)?;
     }
     r.replace_seconds += t.elapsed().as_secs_f64();
+    let mut coverage = Coverage::default();
     let has = |k: PatternKind| set.count(k) > 0;
     if has(PatternKind::Face) {
         for d in map.cells(Orbit::Face).collect::<Vec<_>>() {
@@ -81,7 +123,10 @@ pub fn query_replace(map: &mut CMap3, set: &PatternSet, opts: &ReplaceOptions) -
                     r.matches[i] += 1;
                     r.faces_replaced += 1;
                 }
-                None => r.unmatched_faces += 1,
+                None => {
+                    r.unmatched_faces += 1;
+                    coverage.add(map, PatternKind::Face, face_signature(map, flags, d), d);
+                }
             }
             r.replace_seconds += t.elapsed().as_secs_f64();
         }
@@ -97,12 +142,18 @@ pub fn query_replace(map: &mut CMap3, set: &PatternSet, opts: &ReplaceOptions) -
                     r.matches[i] += 1;
                     r.volumes_replaced += 1;
                 }
-                None => r.unmatched_volumes += 1,
+                None => {
+                    r.unmatched_volumes += 1;
+                    if let Some((s, _, _)) = volume_signature_from(map, Surface::Cell, flags, d) {
+                        coverage.add(map, PatternKind::Volume, s, d);
+                    }
+                }
             }
             r.replace_seconds += t.elapsed().as_secs_f64();
         }
     }
     map.free_mark(mark);
+    r.uncovered = coverage.into_list();
     Ok(r)
 }
 
