@@ -176,3 +176,32 @@ fn signature_equality_matches_direct_isomorphism_on_random_cells() {
     }
     assert!(same > 0 && different > 0, "{same} isomorphic pairs, {different} not");
 }
+
+/// User marks: with `FlagRule::File`, the darts whose `.moka` g-dart carries an effective
+/// mark of group 0 ((byte XOR mask) & used) are the pattern's flags.
+#[test]
+fn moka_marks_are_read_as_flags() {
+    let mut m = CMap3::new();
+    let v = common::unit_cube_vertices(&mut m, 0.0);
+    m.make_hexahedron(v);
+    let dir = common::temp_dir("mokaflags");
+    let plain = dir.join("cube.moka");
+    qmesh::io::write_map(&plain, &m, None, &Default::default()).unwrap();
+    // Mark (byte 1, mask 0, used 1) the first g-dart of kept darts 0, 5 and 9.
+    let text = std::fs::read_to_string(&plain).unwrap();
+    let mut lines: Vec<String> = text.lines().map(String::from).collect();
+    lines[1] = "0 1 0 0 0 0 0 0".into();
+    for k in [0usize, 5, 9] {
+        let mut f: Vec<String> = lines[2 + 2 * k].split('\t').map(String::from).collect();
+        f[4] = "1".into();
+        lines[2 + 2 * k] = f.join("\t");
+    }
+    let marked = dir.join("marked.moka");
+    std::fs::write(&marked, lines.join("\n") + "\n").unwrap();
+    let p = load_pattern(&marked, FlagRule::File).unwrap();
+    let flagged = p.map.darts().filter(|&d| p.map.is_marked(d, p.flags)).count();
+    assert_eq!(flagged, 3);
+    let q = load_pattern(&plain, FlagRule::File).unwrap();
+    assert_ne!(p.signature, q.signature, "flags take part in the signature");
+    assert_eq!(q.automorphisms, 24, "an unflagged cube boundary has the 24 rotations");
+}

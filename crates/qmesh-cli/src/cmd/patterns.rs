@@ -54,11 +54,12 @@ pub enum Action {
 
 /// Flag rule: `corners` (patterns by geometry, input darts all flagged before edge
 /// splits, as in the papers), `geometric` (input cells by the same geometric rule as
-/// patterns), `none`.
+/// patterns), `file` (pattern flags from the file's marks: `.moka` mark group 0), `none`.
 #[derive(clap::ValueEnum, Clone, Copy, Debug)]
 pub enum Flags {
     Corners,
     Geometric,
+    File,
     None,
 }
 
@@ -67,6 +68,7 @@ impl From<Flags> for FlagRule {
         match f {
             Flags::Corners => FlagRule::Corners,
             Flags::Geometric => FlagRule::Geometric,
+            Flags::File => FlagRule::File,
             Flags::None => FlagRule::None,
         }
     }

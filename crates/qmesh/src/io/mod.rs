@@ -128,6 +128,12 @@ pub fn parse(path: &Path, data: &[u8], format: Format) -> IoResult<Loaded> {
     })
 }
 
+/// Reads a `.moka` file with the darts its marks flag (see `moka::read_with_flags`).
+pub fn read_moka_with_flags(path: &Path) -> IoResult<(CMap3, Vec<crate::cmap::Dart>)> {
+    let data = std::fs::read(path).map_err(|e| IoError::io(path, e))?;
+    moka::read_with_flags(path, &data)
+}
+
 /// Reads a file.
 pub fn read(path: &Path, forced: Option<Format>) -> IoResult<Loaded> {
     let format = resolve_format(path, forced)?;

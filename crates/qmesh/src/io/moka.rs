@@ -10,10 +10,13 @@ use crate::cmap::{CMap3, Dart};
 
 struct GDart {
     alpha: [u32; 4],
+    /// Mark byte of group 0 as stored (before applying the header's mask).
+    mark0: u8,
     point: Option<[f64; 3]>,
 }
 
-fn parse_gdarts(lx: &mut Lexer<'_>) -> IoResult<Vec<GDart>> {
+/// The g-darts and the header's (mask, used) bytes of mark group 0.
+fn parse_gdarts(lx: &mut Lexer<'_>) -> IoResult<(Vec<GDart>, u8, u8)> {
     let first = lx.rest_of_line();
     if !first.starts_with("Moka file") {
         return Err(lx.err(format!("expected 'Moka file [ascii]', found '{}'", clip(first))));
@@ -21,7 +24,9 @@ fn parse_gdarts(lx: &mut Lexer<'_>) -> IoResult<Vec<GDart>> {
     if first.contains("binary") {
         return Err(IoError::unsupported(lx.path(), "binary Moka files are not supported"));
     }
-    lx.rest_of_line(); // global mark state
+    // Global mark state: (mask, used) for 4 groups of 8 marks; group 0 holds the flags.
+    let state: Vec<i64> = lx.rest_of_line().split_whitespace().filter_map(|t| t.parse().ok()).collect();
+    let (mask0, used0) = (state.first().copied().unwrap_or(0) as u8, state.get(1).copied().unwrap_or(0) as u8);
     let mut out = Vec::new();
     while lx.remaining() > 0 {
         if lx.peek().is_none() {
@@ -35,7 +40,8 @@ fn parse_gdarts(lx: &mut Lexer<'_>) -> IoResult<Vec<GDart>> {
             }
             *a = v as u32;
         }
-        for _ in 0..4 {
+        let mark0 = lx.int("a mark byte (integer)")? as u8;
+        for _ in 1..4 {
             lx.int("a mark byte (integer)")?;
         }
         let p: i64 = lx.parse("the point flag (0 or 1)")?;
@@ -44,9 +50,9 @@ fn parse_gdarts(lx: &mut Lexer<'_>) -> IoResult<Vec<GDart>> {
             1 => Some(lx.point()?),
             _ => return Err(lx.err(format!("expected the point flag 0 or 1, found {p}"))),
         };
-        out.push(GDart { alpha, point });
+        out.push(GDart { alpha, mark0, point });
     }
-    Ok(out)
+    Ok((out, mask0, used0))
 }
 
 fn find(parent: &mut [u32], mut x: u32) -> u32 {
@@ -60,8 +66,14 @@ fn find(parent: &mut [u32], mut x: u32) -> u32 {
 /// Reads a `.moka` file as a combinatorial map (one orientation class per component).
 /// The map is a surface map (dimension 2) when some dart is 2-free.
 pub fn read(path: &Path, data: &[u8]) -> IoResult<CMap3> {
+    read_with_flags(path, data).map(|(m, _)| m)
+}
+
+/// As [`read`], also returning the darts whose g-dart carries an effective Moka mark in
+/// group 0 (`(byte XOR mask) & used ≠ 0`): the flags stored in the file, if any.
+pub fn read_with_flags(path: &Path, data: &[u8]) -> IoResult<(CMap3, Vec<Dart>)> {
     let mut lx = Lexer::new(path, data, None);
-    let g = parse_gdarts(&mut lx)?;
+    let (g, mask0, used0) = parse_gdarts(&mut lx)?;
     let n = g.len();
     if n == 0 {
         return Err(lx.err("expected at least one g-dart line"));
@@ -165,7 +177,11 @@ pub fn read(path: &Path, data: &[u8]) -> IoResult<CMap3> {
     if two_free {
         map.set_dimension(2);
     }
-    Ok(map)
+    let flagged = (0..n)
+        .filter(|&k| class[k] == 1 && (g[k].mark0 ^ mask0) & used0 != 0)
+        .filter_map(|k| Dart::from_raw(dart_of[k]))
+        .collect();
+    Ok((map, flagged))
 }
 
 /// Writes a map as a `.moka` generalized map: dart k → g-darts 2k, 2k+1.

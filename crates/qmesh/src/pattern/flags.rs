@@ -16,6 +16,9 @@ pub enum FlagRule {
     /// Input volumes are flagged by the same geometric corner rule as patterns (for
     /// meshes whose cells are configurations, e.g. pattern boundaries).
     Geometric,
+    /// User marks: pattern flags are read from the file (`.moka` marks of group 0);
+    /// input darts are all flagged as with `Corners`.
+    File,
 }
 
 /// Sine of the angular tolerance (0.1°) under which two directions count as parallel.

@@ -8,7 +8,7 @@ use super::geometry::{interior_coordinates, total_volume};
 use super::{Pattern, PatternKind};
 use crate::build::{BuildOptions, build_map};
 use crate::cmap::{CMap3, Dart};
-use crate::io::{IoError, Loaded, read};
+use crate::io::{Format, IoError, Loaded, read, read_moka_with_flags};
 use crate::signature::{
     Flags, Surface, cycle_automorphisms, pattern_face_boundary, pattern_face_signature, volume_signature_from,
     word_from,
@@ -35,7 +35,16 @@ fn invalid(path: &Path, msg: impl Into<String>) -> PatternError {
 /// cycle of 2-free darts (f-pattern) or a single closed surface of 3-free darts
 /// (v-pattern).
 pub fn load_pattern(path: &Path, rule: FlagRule) -> Result<Pattern, PatternError> {
-    let mut map = match read(path, None)? {
+    let mut file_flags = Vec::new();
+    let from_file = rule == FlagRule::File && Format::from_path(path) == Some(Format::Moka);
+    let loaded = if from_file {
+        let (m, f) = read_moka_with_flags(path)?;
+        file_flags = f;
+        Loaded::Map(m)
+    } else {
+        read(path, None)?
+    };
+    let mut map = match loaded {
         Loaded::Map(m) => m,
         Loaded::Indexed(mesh) => {
             build_map(mesh, &BuildOptions { fix_orientation: true })
@@ -81,7 +90,7 @@ pub fn load_pattern(path: &Path, rule: FlagRule) -> Result<Pattern, PatternError
         }
         (PatternKind::Volume, surface)
     };
-    finish(path, map, kind, boundary, rule)
+    finish(path, map, kind, boundary, rule, &file_flags)
 }
 
 fn finish(
@@ -90,6 +99,7 @@ fn finish(
     kind: PatternKind,
     boundary: Vec<Dart>,
     rule: FlagRule,
+    file_flags: &[Dart],
 ) -> Result<Pattern, PatternError> {
     if kind == PatternKind::Volume && total_volume(&map) < 0.0 {
         // Moka files keep an arbitrary orientation class: bring the pattern to the map
@@ -97,8 +107,12 @@ fn finish(
         map.reverse_orientation();
     }
     let mark = map.reserve_mark().map_err(|e| invalid(path, e.to_string()))?;
-    if rule != FlagRule::None {
-        flag_corners(&mut map, mark, &boundary, kind == PatternKind::Face);
+    match rule {
+        FlagRule::None => {}
+        FlagRule::File => file_flags.iter().for_each(|&d| map.mark(d, mark)),
+        FlagRule::Corners | FlagRule::Geometric => {
+            flag_corners(&mut map, mark, &boundary, kind == PatternKind::Face);
+        }
     }
     let flags = Flags::Mark(mark);
     let (signature, automorphisms, start) = match kind {

@@ -90,7 +90,7 @@ pub fn query_replace(map: &mut CMap3, set: &PatternSet, opts: &ReplaceOptions) -
     let mut r = ReplaceReport { matches: vec![0; set.patterns.len()], ..Default::default() };
     let mark = map.reserve_mark()?;
     match opts.flags {
-        FlagRule::Corners => {
+        FlagRule::Corners | FlagRule::File => {
             for d in map.darts().collect::<Vec<_>>() {
                 map.mark(d, mark);
             }
