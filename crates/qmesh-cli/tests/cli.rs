@@ -118,9 +118,45 @@ fn demo_runs_and_writes_its_files() {
     let (code, out, err) = qmesh(&["demo", "-o", dir.to_str().unwrap()]);
     assert_eq!(code, 0, "{err}");
     assert!(out.contains("valid = true"));
-    for f in ["hex_grid.vtk", "tet_grid.mesh", "hex_grid_split.vtk", "hex_grid_boundary.off", "tet_grid.moka"] {
+    assert!(out.contains("576 volumes (576 hex") && out.contains("1536 volumes (1536 hex"), "{out}");
+    for f in [
+        "hex_grid.vtk",
+        "tet_grid.mesh",
+        "hex_grid_split.vtk",
+        "hex_grid_boundary.off",
+        "tet_grid.moka",
+        "hex_grid_subdivided.vtk",
+        "tet_grid_to_hex.vtk",
+    ] {
         assert!(dir.join(f).is_file(), "{f}");
         let (code, _, err) = qmesh(&["validate", dir.join(f).to_str().unwrap()]);
         assert_eq!(code, 0, "{f}: {err}");
     }
+}
+
+#[test]
+fn generated_patterns_are_written_and_usable() {
+    let dir = temp("gen");
+    let (code, out, err) = qmesh(&["patterns", "generate", "tet2hex", "-o", dir.to_str().unwrap()]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("1 f-patterns, 1 v-patterns, 0 duplicates"), "{out}");
+    let tets = temp("t.vtk");
+    qmesh(&["generate", "tet-grid", "--size", "2", "-o", tets.to_str().unwrap()]);
+    let hexes = temp("h.vtk");
+    let (code, out, err) = qmesh(&[
+        "replace",
+        tets.to_str().unwrap(),
+        hexes.to_str().unwrap(),
+        "--split-edges",
+        "2",
+        "--patterns",
+        dir.to_str().unwrap(),
+        "--json",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let j: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(j["volumes"], 4 * 48);
+    assert_eq!(j["cell_types"]["hex"], 4 * 48);
+    assert_eq!(j["valid"], true);
+    assert_eq!(j["unmatched_volumes"], 0);
 }

@@ -5,6 +5,7 @@
 #![deny(unsafe_code)]
 #![warn(missing_debug_implementations)]
 
+pub mod apps;
 pub mod build;
 pub mod cmap;
 pub mod generate;

@@ -5,8 +5,9 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use anyhow::Result;
-use qmesh::build::BuildOptions;
-use qmesh::io::{Format, WriteOptions, load_map, write_indexed};
+use qmesh::apps::{GeneratedKind, generated_pattern_meshes};
+use qmesh::build::{BuildOptions, build_map};
+use qmesh::io::{Format, WriteOptions, load_map, write_indexed, write_map};
 use qmesh::pattern::{FlagRule, PatternKind, audit, boundaries_mesh, load_pattern_dir};
 use qmesh::replace::{ReplaceOptions, Uncovered, query_replace};
 use serde_json::json;
@@ -37,6 +38,18 @@ pub enum Action {
         /// With --against: split every edge into K segments first.
         #[arg(long)]
         split_edges: Option<usize>,
+    },
+    /// Write a pattern set qmesh generates (fpattern/ and vpattern/ folders) for
+    /// inspection, editing, and use with `--patterns`.
+    Generate {
+        /// Which set: hex-subdivision or tet2hex.
+        kind: Generated,
+        /// Output folder.
+        #[arg(short, long)]
+        output: PathBuf,
+        /// File format of the patterns.
+        #[arg(long, default_value = "vtk")]
+        format: PatternFormat,
     },
     /// Write the boundary of every v-pattern as one polyhedral cell (side by side), e.g.
     /// to look at the configurations a set covers or to benchmark matching.
@@ -78,6 +91,7 @@ pub fn run(a: Args) -> Result<ExitCode> {
     let (dir, as_json, flags, against, split_edges) = match a.action {
         Action::Audit { dir, json, flags, against, split_edges } => (dir, json, flags, against, split_edges),
         Action::Boundaries { dir, output, copies } => return boundaries(&dir, &output, copies),
+        Action::Generate { kind, output, format } => return generate(kind, &output, format),
     };
     let t = std::time::Instant::now();
     let set = load_pattern_dir(&dir, flags.into());
@@ -166,4 +180,62 @@ pub fn uncovered_json(u: &[Uncovered]) -> serde_json::Value {
             .map(|u| json!({"kind": u.kind.name(), "signature": u.signature.digest(), "count": u.count, "sample": u.sample}))
             .collect(),
     )
+}
+
+#[derive(clap::ValueEnum, Clone, Copy, Debug)]
+pub enum Generated {
+    HexSubdivision,
+    Tet2hex,
+}
+
+impl From<Generated> for GeneratedKind {
+    fn from(g: Generated) -> GeneratedKind {
+        match g {
+            Generated::HexSubdivision => GeneratedKind::HexSubdivision,
+            Generated::Tet2hex => GeneratedKind::Tet2Hex,
+        }
+    }
+}
+
+#[derive(clap::ValueEnum, Clone, Copy, Debug)]
+pub enum PatternFormat {
+    /// f-patterns as OFF, v-patterns as VTK.
+    Vtk,
+    /// Moka generalized maps (the papers' format).
+    Moka,
+}
+
+/// `qmesh patterns generate`: writes `DIR/fpattern/*` and `DIR/vpattern/*`.
+fn generate(kind: Generated, dir: &std::path::Path, format: PatternFormat) -> Result<ExitCode> {
+    let kind: GeneratedKind = kind.into();
+    for (stem, volume, mesh) in generated_pattern_meshes(kind) {
+        let sub = dir.join(if volume { "vpattern" } else { "fpattern" });
+        std::fs::create_dir_all(&sub)?;
+        let file = match format {
+            PatternFormat::Vtk => {
+                let f = sub.join(format!("{stem}.{}", if volume { "vtk" } else { "off" }));
+                let fmt = if volume { Format::Vtk } else { Format::Off };
+                write_indexed(&f, &mesh, fmt, &WriteOptions::default())?;
+                f
+            }
+            PatternFormat::Moka => {
+                let f = sub.join(format!("{stem}.moka"));
+                let (map, _) = build_map(mesh, &BuildOptions { fix_orientation: true })?;
+                write_map(&f, &map, None, &WriteOptions::default())?;
+                f
+            }
+        };
+        println!("wrote {}", file.display());
+    }
+    let set = load_pattern_dir(dir, FlagRule::Corners);
+    let report = audit(&set);
+    println!(
+        "{}: {} f-patterns, {} v-patterns, {} duplicates, {} skipped",
+        kind.name(),
+        set.count(PatternKind::Face),
+        set.count(PatternKind::Volume),
+        report.duplicates.len(),
+        report.skipped.len()
+    );
+    Ok(ExitCode::SUCCESS)
 }

@@ -44,7 +44,7 @@ pub fn load_pattern(path: &Path, rule: FlagRule) -> Result<Pattern, PatternError
     } else {
         read(path, None)?
     };
-    let mut map = match loaded {
+    let map = match loaded {
         Loaded::Map(m) => m,
         Loaded::Indexed(mesh) => {
             build_map(mesh, &BuildOptions { fix_orientation: true })
@@ -52,6 +52,21 @@ pub fn load_pattern(path: &Path, rule: FlagRule) -> Result<Pattern, PatternError
                 .0
         }
     };
+    pattern_from_map(path, map, rule, &file_flags)
+}
+
+/// Makes a pattern of a map already in memory (generated sets); `name` is what audits
+/// and reports call it. Same checks as [`load_pattern`].
+///
+/// # Errors
+/// As [`load_pattern`], without the I/O part.
+pub fn pattern_from_map(
+    name: &Path,
+    mut map: CMap3,
+    rule: FlagRule,
+    file_flags: &[Dart],
+) -> Result<Pattern, PatternError> {
+    let path = name;
     if let Some(v) = map.is_valid().first() {
         return Err(invalid(path, format!("the pattern is not a valid map: {v}")));
     }
@@ -90,7 +105,7 @@ pub fn load_pattern(path: &Path, rule: FlagRule) -> Result<Pattern, PatternError
         }
         (PatternKind::Volume, surface)
     };
-    finish(path, map, kind, boundary, rule, &file_flags)
+    finish(path, map, kind, boundary, rule, file_flags)
 }
 
 fn finish(

@@ -11,7 +11,7 @@ mod set;
 pub use audit::{Audit, AuditEntry, audit};
 pub use boundaries::boundaries_mesh;
 pub use flags::{FlagRule, flag_corners, flag_corners_on};
-pub use load::{PatternError, load_pattern};
+pub use load::{PatternError, load_pattern, pattern_from_map};
 pub use set::{PatternSet, Skipped, load_pattern_dir};
 
 use std::path::PathBuf;
