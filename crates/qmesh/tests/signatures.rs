@@ -205,3 +205,29 @@ fn moka_marks_are_read_as_flags() {
     assert_ne!(p.signature, q.signature, "flags take part in the signature");
     assert_eq!(q.automorphisms, 24, "an unflagged cube boundary has the 24 rotations");
 }
+
+/// A pattern whose boundary is not one cycle (f) or one closed surface (v) is rejected
+/// with a message saying so.
+#[test]
+fn patterns_with_split_boundaries_are_rejected() {
+    let dir = common::temp_dir("badpatterns");
+    let two_faces = dir.join("two.off");
+    std::fs::write(&two_faces, "OFF\n6 2 0\n0 0 0\n1 0 0\n0 1 0\n5 0 0\n6 0 0\n5 1 0\n3 0 1 2\n3 3 4 5\n").unwrap();
+    let e = load_pattern(&two_faces, FlagRule::Corners).unwrap_err().to_string();
+    assert!(e.contains("two.off") && e.contains("one cycle of 2-free darts"), "{e}");
+    let two_tets = dir.join("two.vtk");
+    std::fs::write(
+        &two_tets,
+        "# vtk DataFile Version 3.0\nt\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 8 double\n\
+         0 0 0 1 0 0 0 1 0 0 0 1 5 0 0 6 0 0 5 1 0 5 0 1\nCELLS 2 10\n4 0 1 2 3\n4 4 5 6 7\nCELL_TYPES 2\n10 10\n",
+    )
+    .unwrap();
+    let e = load_pattern(&two_tets, FlagRule::Corners).unwrap_err().to_string();
+    assert!(e.contains("two.vtk") && e.contains("one closed surface"), "{e}");
+    let closed = dir.join("closed.moka");
+    let mut m = CMap3::new();
+    let v = common::unit_cube_vertices(&mut m, 0.0);
+    m.make_hexahedron(v);
+    qmesh::io::write_map(&closed, &m, None, &Default::default()).unwrap();
+    assert!(load_pattern(&closed, FlagRule::Corners).is_ok(), "a single hexahedron is a valid v-pattern");
+}
