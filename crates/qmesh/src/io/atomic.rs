@@ -12,9 +12,30 @@ pub fn temp_path(dest: &Path) -> PathBuf {
     dest.with_file_name(format!(".{name}.qmesh-tmp-{}", std::process::id()))
 }
 
+/// Removes temporaries of `dest` left by runs that were killed (their process is gone;
+/// checked through /proc, so only on Linux).
+fn remove_stale_temporaries(dest: &Path) {
+    let (Some(dir), Some(name)) = (dest.parent(), dest.file_name()) else { return };
+    let dir = if dir.as_os_str().is_empty() { Path::new(".") } else { dir };
+    let prefix = format!(".{}.qmesh-tmp-", name.to_string_lossy());
+    if !Path::new("/proc/self").exists() {
+        return;
+    }
+    let Ok(entries) = std::fs::read_dir(dir) else { return };
+    for e in entries.flatten() {
+        let f = e.file_name().to_string_lossy().into_owned();
+        if let Some(pid) = f.strip_prefix(&prefix).and_then(|p| p.parse::<u32>().ok())
+            && !Path::new(&format!("/proc/{pid}")).exists()
+        {
+            let _ = std::fs::remove_file(e.path());
+        }
+    }
+}
+
 /// Runs `body` on a buffered writer to a temporary file, then renames it onto `dest`.
 /// On any error the temporary file is removed and `dest` is left untouched.
 pub fn write_atomically(dest: &Path, body: impl FnOnce(&mut dyn Write) -> IoResult<()>) -> IoResult<()> {
+    remove_stale_temporaries(dest);
     let tmp = temp_path(dest);
     let result = (|| {
         let f = File::create(&tmp).map_err(|e| IoError::io(dest, e))?;
