@@ -25,6 +25,8 @@ enum Command {
     Convert(cmd::convert::Args),
     /// Writes built-in meshes (structured hex or tet grids).
     Generate(cmd::generate::Args),
+    /// Element quality: scaled Jacobian per cell type (Verdict) and signed volumes.
+    Quality(cmd::quality::Args),
     /// Query-replace (2022): split edges, replace matching faces, then volumes.
     Replace(cmd::replace::Args),
     /// Pattern sets: audit (kinds, signatures, automorphisms, duplicates).
@@ -43,6 +45,7 @@ fn main() -> ExitCode {
         Command::Demo(a) => cmd::demo::run(a),
         Command::Patterns(a) => cmd::patterns::run(a),
         Command::Replace(a) => cmd::replace::run(a),
+        Command::Quality(a) => cmd::quality::run(a),
     };
     match result {
         Ok(code) => code,

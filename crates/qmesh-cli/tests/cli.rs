@@ -160,3 +160,28 @@ fn generated_patterns_are_written_and_usable() {
     assert_eq!(j["valid"], true);
     assert_eq!(j["unmatched_volumes"], 0);
 }
+
+#[test]
+fn quality_reports_scaled_jacobians() {
+    let grid = temp("q.vtk");
+    qmesh(&["generate", "grid", "--size", "3", "-o", grid.to_str().unwrap()]);
+    let (code, out, err) = qmesh(&["quality", grid.to_str().unwrap(), "--json", "--per-cell"]);
+    assert_eq!(code, 0, "{err}");
+    let j: serde_json::Value = serde_json::from_str(&out).unwrap();
+    let hex = &j["scaled_jacobian"]["hex"];
+    assert_eq!(hex["count"], 27);
+    assert!((hex["min"].as_f64().unwrap() - 1.0).abs() < 1e-12);
+    assert_eq!(hex["histogram"][9], 27);
+    assert_eq!(j["per_cell"].as_array().unwrap().len(), 27);
+    let tets = temp("qt.vtk");
+    qmesh(&["generate", "tet-grid", "--size", "1", "-o", tets.to_str().unwrap()]);
+    let (_, out, _) = qmesh(&["quality", tets.to_str().unwrap(), "--json"]);
+    let j: serde_json::Value = serde_json::from_str(&out).unwrap();
+    // The 6 Kuhn tetrahedra of a cube are congruent: J = 1, and the largest product of
+    // edge lengths at a node is 1·√2·√3, so the scaled Jacobian is √2/√6 = 1/√3.
+    let tet = &j["scaled_jacobian"]["tet"];
+    assert_eq!(tet["count"], 6);
+    let expected = 1.0 / 3f64.sqrt();
+    assert!((tet["min"].as_f64().unwrap() - expected).abs() < 1e-12, "{tet}");
+    assert!((tet["max"].as_f64().unwrap() - expected).abs() < 1e-12, "{tet}");
+}

@@ -5,6 +5,7 @@ pub mod demo;
 pub mod generate;
 pub mod info;
 pub mod patterns;
+pub mod quality;
 pub mod replace;
 pub mod validate;
 

@@ -1,9 +1,11 @@
 //! Geometry attached to vertices: vector helpers and signed volumes.
 
 mod mvc;
+mod quality;
 mod volume;
 
 pub use mvc::{mvc_polygon, mvc_triangles};
+pub use quality::{hex_scaled_jacobian, tet_scaled_jacobian};
 pub use volume::{signed_volume_of_faces, signed_volume_of_map_volume, signed_volume_of_table};
 
 /// a − b.

@@ -1,0 +1,97 @@
+//! Element quality with Verdict's definitions (GUIDE §3): the scaled Jacobian of
+//! hexahedra (minimum over the 8 corners and the centre) and tetrahedra.
+
+use super::{cross, dot, sub};
+
+fn norm(a: [f64; 3]) -> f64 {
+    dot(a, a).sqrt()
+}
+
+/// det[a, b, c] of the three vectors normalised, or None when one has zero length.
+fn unit_det(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> Option<f64> {
+    let (la, lb, lc) = (norm(a), norm(b), norm(c));
+    if la <= f64::MIN_POSITIVE || lb <= f64::MIN_POSITIVE || lc <= f64::MIN_POSITIVE {
+        return None;
+    }
+    Some(dot(a, cross(b, c)) / (la * lb * lc))
+}
+
+/// Scaled Jacobian of a hexahedron in VTK node order: the minimum, over the 8 corners
+/// and the centre (principal axes), of the determinant of unit edge vectors. 1 for a
+/// cube, ≤ 0 for an inverted corner; 0 when an edge has zero length.
+pub fn hex_scaled_jacobian(p: &[[f64; 3]; 8]) -> f64 {
+    let d = |i: usize, j: usize| sub(p[j], p[i]);
+    let add4 = |a: [f64; 3], b: [f64; 3], c: [f64; 3], e: [f64; 3]| {
+        [a[0] + b[0] + c[0] + e[0], a[1] + b[1] + c[1] + e[1], a[2] + b[2] + c[2] + e[2]]
+    };
+    // Principal axes at the centre.
+    let x1 = add4(d(0, 1), d(3, 2), d(4, 5), d(7, 6));
+    let x2 = add4(d(0, 3), d(1, 2), d(4, 7), d(5, 6));
+    let x3 = add4(d(0, 4), d(1, 5), d(2, 6), d(3, 7));
+    // Corner frames: (ξ, η, ζ) edges leaving each node, right-handed for a cube.
+    const CORNERS: [[usize; 4]; 8] = [
+        [0, 1, 3, 4],
+        [1, 2, 0, 5],
+        [2, 3, 1, 6],
+        [3, 0, 2, 7],
+        [4, 7, 5, 0],
+        [5, 4, 6, 1],
+        [6, 5, 7, 2],
+        [7, 6, 4, 3],
+    ];
+    let mut min = match unit_det(x1, x2, x3) {
+        Some(j) => j,
+        None => return 0.0,
+    };
+    for [o, a, b, c] in CORNERS {
+        match unit_det(d(o, a), d(o, b), d(o, c)) {
+            Some(j) => min = min.min(j),
+            None => return 0.0,
+        }
+    }
+    min
+}
+
+/// Scaled Jacobian of a tetrahedron in VTK node order: √2 · det[p1−p0, p2−p0, p3−p0]
+/// divided by the largest product of the three edge lengths at a node. 1 for a regular
+/// tetrahedron.
+pub fn tet_scaled_jacobian(p: &[[f64; 3]; 4]) -> f64 {
+    let e = |i: usize, j: usize| sub(p[j], p[i]);
+    let j = dot(e(0, 3), cross(e(2, 0), e(0, 1)));
+    let l = |i: usize, k: usize| dot(e(i, k), e(i, k));
+    let (l01, l12, l20, l03, l13, l23) = (l(0, 1), l(1, 2), l(2, 0), l(0, 3), l(1, 3), l(2, 3));
+    let lengths = (l01 * l20 * l03).max(l01 * l12 * l13).max(l12 * l20 * l23).max(l03 * l13 * l23).sqrt();
+    if lengths < f64::MIN_POSITIVE {
+        return 0.0;
+    }
+    std::f64::consts::SQRT_2 * j / lengths
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ideal_cells_score_one_and_inverted_ones_negative() {
+        let cube = [
+            [0., 0., 0.],
+            [1., 0., 0.],
+            [1., 1., 0.],
+            [0., 1., 0.],
+            [0., 0., 1.],
+            [1., 0., 1.],
+            [1., 1., 1.],
+            [0., 1., 1.],
+        ];
+        assert!((hex_scaled_jacobian(&cube) - 1.0).abs() < 1e-12);
+        let mut flipped = cube;
+        flipped.swap(1, 3);
+        flipped.swap(5, 7);
+        assert!(hex_scaled_jacobian(&flipped) < 0.0);
+        let s = 8f64.sqrt();
+        let regular = [[1., 1., 1.], [1., -1., -1.], [-1., 1., -1.], [-1., -1., 1.]].map(|p| p.map(|c| c / s));
+        // VTK order has 0-1-2 turning toward 3.
+        let j = tet_scaled_jacobian(&[regular[0], regular[2], regular[1], regular[3]]);
+        assert!((j.abs() - 1.0).abs() < 1e-12, "{j}");
+    }
+}
