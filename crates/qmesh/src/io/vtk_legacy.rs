@@ -527,8 +527,11 @@ pub fn write(path: &Path, mesh: &IndexedMesh, binary: bool, w: &mut dyn Write) -
     }
     writeln!(w, "CELL_TYPES {}", cells.len()).map_err(io)?;
     ints(w, &mut cells.iter().map(|c| c.0 as i32), false).map_err(io)?;
+    // Cell arrays for ParaView: the VTK type of each cell, and labels when known.
+    writeln!(w, "CELL_DATA {}\nSCALARS cell_type int 1\nLOOKUP_TABLE default", cells.len()).map_err(io)?;
+    ints(w, &mut cells.iter().map(|c| c.0 as i32), false).map_err(io)?;
     if mesh.is_volume() && !mesh.labels.is_empty() {
-        writeln!(w, "CELL_DATA {}\nSCALARS label int 1\nLOOKUP_TABLE default", cells.len()).map_err(io)?;
+        writeln!(w, "SCALARS label int 1\nLOOKUP_TABLE default").map_err(io)?;
         ints(w, &mut mesh.labels.iter().copied(), false).map_err(io)?;
     }
     Ok(())

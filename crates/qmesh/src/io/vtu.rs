@@ -131,6 +131,8 @@ pub fn write(path: &Path, mesh: &IndexedMesh, w: &mut dyn Write) -> IoResult<()>
         }
     }
     let mut data = Attributes::new();
+    let cell_type: Vec<i32> = types.iter().map(|&t| t as i32).collect();
+    data.cell.push(Attribute::scalars("cell_type", 1).with_data(IOBuffer::I32(cell_type)));
     if mesh.is_volume() && !mesh.labels.is_empty() {
         data.cell.push(Attribute::scalars("label", 1).with_data(IOBuffer::I32(mesh.labels.clone())));
     }
