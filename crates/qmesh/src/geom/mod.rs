@@ -35,3 +35,8 @@ pub fn centroid(points: impl IntoIterator<Item = [f64; 3]>) -> [f64; 3] {
     }
     if n == 0.0 { s } else { [s[0] / n, s[1] / n, s[2] / n] }
 }
+
+/// The unit cube's corners in VTK hexahedron order (shared by the unit tests).
+#[cfg(test)]
+pub(crate) const UNIT_CUBE: [[f64; 3]; 8] =
+    [[0., 0., 0.], [1., 0., 0.], [1., 1., 0.], [0., 1., 0.], [0., 0., 1.], [1., 0., 1.], [1., 1., 1.], [0., 1., 1.]];

@@ -124,16 +124,7 @@ mod tests {
 
     #[test]
     fn triangle_mesh_coordinates_reproduce_points() {
-        let v = [
-            [0., 0., 0.],
-            [1., 0., 0.],
-            [1., 1., 0.],
-            [0., 1., 0.],
-            [0., 0., 1.],
-            [1., 0., 1.],
-            [1., 1., 1.],
-            [0., 1., 1.],
-        ];
+        let v = super::super::UNIT_CUBE;
         let quads = [[0, 3, 2, 1], [4, 5, 6, 7], [0, 1, 5, 4], [1, 2, 6, 5], [2, 3, 7, 6], [3, 0, 4, 7]];
         let tris: Vec<[usize; 3]> = quads.iter().flat_map(|q| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]]).collect();
         for x in [[0.5, 0.5, 0.5], [0.2, 0.3, 0.9], [0.5, 0.5, 0.0]] {

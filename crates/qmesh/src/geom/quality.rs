@@ -73,16 +73,7 @@ mod tests {
 
     #[test]
     fn ideal_cells_score_one_and_inverted_ones_negative() {
-        let cube = [
-            [0., 0., 0.],
-            [1., 0., 0.],
-            [1., 1., 0.],
-            [0., 1., 0.],
-            [0., 0., 1.],
-            [1., 0., 1.],
-            [1., 1., 1.],
-            [0., 1., 1.],
-        ];
+        let cube = super::super::UNIT_CUBE;
         assert!((hex_scaled_jacobian(&cube) - 1.0).abs() < 1e-12);
         let mut flipped = cube;
         flipped.swap(1, 3);
