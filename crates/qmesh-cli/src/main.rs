@@ -2,6 +2,7 @@
 
 mod cmd;
 mod memory;
+mod progress;
 
 use std::process::ExitCode;
 
@@ -31,6 +32,8 @@ enum Command {
     Replace(cmd::replace::Args),
     /// Pattern sets: audit (kinds, signatures, automorphisms, duplicates).
     Patterns(cmd::patterns::Args),
+    /// Octree hexahedral subdivision of a surface (2022 Algorithm 5), with 2:1 balance.
+    Subdivide(cmd::subdivide::Args),
     /// A short tour on built-in inputs: generate, inspect, split edges, write files.
     Demo(cmd::demo::Args),
 }
@@ -46,6 +49,7 @@ fn main() -> ExitCode {
         Command::Patterns(a) => cmd::patterns::run(a),
         Command::Replace(a) => cmd::replace::run(a),
         Command::Quality(a) => cmd::quality::run(a),
+        Command::Subdivide(a) => cmd::subdivide::run(a),
     };
     match result {
         Ok(code) => code,

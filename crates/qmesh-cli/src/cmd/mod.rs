@@ -7,6 +7,7 @@ pub mod info;
 pub mod patterns;
 pub mod quality;
 pub mod replace;
+pub mod subdivide;
 pub mod validate;
 
 use std::path::PathBuf;

@@ -2,5 +2,9 @@
 //! qmesh itself so that users can inspect, edit and pass them back with `--patterns`.
 
 mod generated_patterns;
+mod octree;
+mod subdivide;
 
 pub use generated_patterns::{GeneratedKind, generated_pattern_meshes, generated_pattern_set};
+pub use octree::{OctCell, Octree, RootBox};
+pub use subdivide::{SubdivideOptions, SubdivideReport, Subdivision, subdivide};

@@ -86,6 +86,10 @@ impl CellKind {
     }
 }
 
+/// Corners of a VTK hexahedron as bit sets (bit k = upper side along axis k): node i
+/// of an axis-aligned box hexahedron is its corner `HEX_CORNER_BITS[i]`.
+pub const HEX_CORNER_BITS: [u32; 8] = [0, 1, 3, 2, 4, 5, 7, 6];
+
 /// Points, volume cells and polygons as read from (or written to) a file.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct IndexedMesh {
@@ -105,6 +109,36 @@ pub struct IndexedMesh {
     /// that builder errors can point into the file; empty otherwise.
     pub cell_lines: Vec<u32>,
     pub poly_lines: Vec<u32>,
+    /// Further per-cell (or per-polygon, for surfaces) arrays written for ParaView:
+    /// `level`, `pattern_id`, `scaled_jacobian`, …
+    pub cell_arrays: Vec<CellArray>,
+}
+
+/// A named per-cell array.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CellArray {
+    pub name: String,
+    pub values: CellValues,
+}
+
+/// Values of a [`CellArray`].
+#[derive(Clone, Debug, PartialEq)]
+pub enum CellValues {
+    Int(Vec<i32>),
+    Float(Vec<f64>),
+}
+
+impl CellValues {
+    pub fn len(&self) -> usize {
+        match self {
+            CellValues::Int(v) => v.len(),
+            CellValues::Float(v) => v.len(),
+        }
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
 }
 
 impl IndexedMesh {
@@ -131,6 +165,20 @@ impl IndexedMesh {
         } else if !self.labels.is_empty() {
             self.labels.push(0);
         }
+    }
+
+    /// Adds (or replaces) a per-cell array; its length must be the number of cells
+    /// (polygons for a surface).
+    pub fn set_cell_array(&mut self, name: &str, values: CellValues) {
+        let n = if self.is_volume() { self.nb_cells() } else { self.nb_polygons() };
+        assert_eq!(values.len(), n, "cell array {name}: one value per cell");
+        self.cell_arrays.retain(|a| a.name != name);
+        self.cell_arrays.push(CellArray { name: name.to_string(), values });
+    }
+
+    /// The array called `name`, if any.
+    pub fn cell_array(&self, name: &str) -> Option<&CellValues> {
+        self.cell_arrays.iter().find(|a| a.name == name).map(|a| &a.values)
     }
 
     /// Appends a polygon.

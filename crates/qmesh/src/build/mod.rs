@@ -15,7 +15,7 @@ pub use error::{BuildError, Subject};
 pub use extract::{
     ExtractedKinds, boundary_polygons, classify_volume, count_cell_kinds, count_kinds_of, extract, recognise_volume,
 };
-pub use indexed::{CellKind, IndexedMesh};
+pub use indexed::{CellArray, CellKind, CellValues, HEX_CORNER_BITS, IndexedMesh};
 pub use surface::build_surface_map;
 pub use volume::{BuildOptions, BuildReport, build_volume_map, build_volume_map_owned};
 

@@ -128,6 +128,24 @@ pub fn parse(path: &Path, data: &[u8], format: Format) -> IoResult<Loaded> {
     })
 }
 
+/// Reads a surface for the applications that need one (octree subdivision, marching
+/// cubes): the polygons of a surface file, or the boundary of a volume mesh.
+///
+/// # Errors
+/// As [`read`], plus a volume mesh that does not build.
+pub fn read_surface(path: &Path, forced: Option<Format>) -> IoResult<IndexedMesh> {
+    let map = match read(path, forced)? {
+        Loaded::Indexed(mesh) if !mesh.is_volume() => return Ok(mesh),
+        Loaded::Indexed(mesh) => {
+            crate::build::build_map(mesh, &BuildOptions::default())
+                .map_err(|cause| IoError::Build { path: path.into(), cause })?
+                .0
+        }
+        Loaded::Map(map) => map,
+    };
+    Ok(crate::build::boundary_polygons(&map))
+}
+
 /// Reads a `.moka` file with the darts its marks flag (see `moka::read_with_flags`).
 pub fn read_moka_with_flags(path: &Path) -> IoResult<(CMap3, Vec<crate::cmap::Dart>)> {
     let data = std::fs::read(path).map_err(|e| IoError::io(path, e))?;

@@ -8,7 +8,7 @@ use std::path::Path;
 
 use super::error::{IoError, IoResult};
 use super::lexer::{Lexer, clip};
-use crate::build::{CellKind, IndexedMesh};
+use crate::build::{CellKind, CellValues, IndexedMesh};
 
 /// Names of cell arrays read as volume labels.
 pub const LABEL_ARRAYS: &[&str] =
@@ -533,6 +533,24 @@ pub fn write(path: &Path, mesh: &IndexedMesh, binary: bool, w: &mut dyn Write) -
     if mesh.is_volume() && !mesh.labels.is_empty() {
         writeln!(w, "SCALARS label int 1\nLOOKUP_TABLE default").map_err(io)?;
         ints(w, &mut mesh.labels.iter().copied(), false).map_err(io)?;
+    }
+    for a in &mesh.cell_arrays {
+        match &a.values {
+            CellValues::Int(v) => {
+                writeln!(w, "SCALARS {} int 1\nLOOKUP_TABLE default", a.name).map_err(io)?;
+                ints(w, &mut v.iter().copied(), false).map_err(io)?;
+            }
+            CellValues::Float(v) => {
+                writeln!(w, "SCALARS {} double 1\nLOOKUP_TABLE default", a.name).map_err(io)?;
+                if binary {
+                    let buf: Vec<u8> = v.iter().flat_map(|x| x.to_be_bytes()).collect();
+                    w.write_all(&buf).map_err(io)?;
+                    writeln!(w).map_err(io)?;
+                } else {
+                    v.iter().try_for_each(|x| writeln!(w, "{x}")).map_err(io)?;
+                }
+            }
+        }
     }
     Ok(())
 }

@@ -11,7 +11,7 @@ use vtkio::model::{
 
 use super::error::{IoError, IoResult};
 use super::vtk_legacy::{CellList, LABEL_ARRAYS, assemble};
-use crate::build::{CellKind, IndexedMesh};
+use crate::build::{CellKind, CellValues, IndexedMesh};
 
 fn flat_to_offsets(num_cells: u32, flat: &[u32]) -> Option<CellList> {
     let mut offs = vec![0usize];
@@ -135,6 +135,13 @@ pub fn write(path: &Path, mesh: &IndexedMesh, w: &mut dyn Write) -> IoResult<()>
     data.cell.push(Attribute::scalars("cell_type", 1).with_data(IOBuffer::I32(cell_type)));
     if mesh.is_volume() && !mesh.labels.is_empty() {
         data.cell.push(Attribute::scalars("label", 1).with_data(IOBuffer::I32(mesh.labels.clone())));
+    }
+    for a in &mesh.cell_arrays {
+        let buf = match &a.values {
+            CellValues::Int(v) => IOBuffer::I32(v.clone()),
+            CellValues::Float(v) => IOBuffer::F64(v.clone()),
+        };
+        data.cell.push(Attribute::scalars(a.name.as_str(), 1).with_data(buf));
     }
     let piece = UnstructuredGridPiece {
         points: IOBuffer::F64(mesh.points.iter().flatten().copied().collect()),

@@ -87,7 +87,6 @@ impl Coverage {
 /// # Errors
 /// Only from the edge split (k = 0).
 pub fn query_replace(map: &mut CMap3, set: &PatternSet, opts: &ReplaceOptions) -> Result<ReplaceReport, MapError> {
-    let mut r = ReplaceReport { matches: vec![0; set.patterns.len()], ..Default::default() };
     let mark = map.reserve_mark()?;
     match opts.flags {
         FlagRule::Corners | FlagRule::File => {
@@ -103,18 +102,40 @@ pub fn query_replace(map: &mut CMap3, set: &PatternSet, opts: &ReplaceOptions) -
         }
         FlagRule::None => {}
     }
-    let flags = Flags::Mark(mark);
     let t = Instant::now();
-    if let Some(k) = opts.split_edges {
-        r.edges_split = map.split_all_edges(k)?;
-    }
-    r.replace_seconds += t.elapsed().as_secs_f64();
+    let edges_split = match opts.split_edges {
+        Some(k) => map.split_all_edges(k)?,
+        None => 0,
+    };
+    let split_seconds = t.elapsed().as_secs_f64();
+    let faces: Vec<Dart> = map.cells(Orbit::Face).collect();
+    let volumes: Vec<Dart> = map.cells(Orbit::Volume).collect();
+    let mut r = replace_cells(map, set, Flags::Mark(mark), &faces, &volumes, opts.use_signatures);
+    r.edges_split = edges_split;
+    r.replace_seconds += split_seconds;
+    map.free_mark(mark);
+    Ok(r)
+}
+
+/// The f and v passes of query-replace restricted to the given faces and volumes (one
+/// dart each), with the caller's flags: what the applications use (2022 §7), which
+/// split edges and set flags themselves. List each face once (either side): a face
+/// shared by two volumes is replaced on both sides at once.
+pub fn replace_cells(
+    map: &mut CMap3,
+    set: &PatternSet,
+    flags: Flags,
+    faces: &[Dart],
+    volumes: &[Dart],
+    use_signatures: bool,
+) -> ReplaceReport {
+    let mut r = ReplaceReport { matches: vec![0; set.patterns.len()], ..Default::default() };
     let mut coverage = Coverage::default();
     let has = |k: PatternKind| set.count(k) > 0;
     if has(PatternKind::Face) {
-        for d in map.cells(Orbit::Face).collect::<Vec<_>>() {
+        for &d in faces {
             let t = Instant::now();
-            let found = find_face(map, set, flags, d, opts.use_signatures);
+            let found = find_face(map, set, flags, d, use_signatures);
             r.query_seconds += t.elapsed().as_secs_f64();
             let t = Instant::now();
             match found {
@@ -132,9 +153,9 @@ pub fn query_replace(map: &mut CMap3, set: &PatternSet, opts: &ReplaceOptions) -
         }
     }
     if has(PatternKind::Volume) {
-        for d in map.cells(Orbit::Volume).collect::<Vec<_>>() {
+        for &d in volumes {
             let t = Instant::now();
-            let found = find_volume(map, set, flags, d, opts.use_signatures);
+            let found = find_volume(map, set, flags, d, use_signatures);
             r.query_seconds += t.elapsed().as_secs_f64();
             let t = Instant::now();
             match found.and_then(|(i, start)| replace_volume(map, &set.patterns[i], start, flags).map(|_| i)) {
@@ -152,9 +173,8 @@ pub fn query_replace(map: &mut CMap3, set: &PatternSet, opts: &ReplaceOptions) -
             r.replace_seconds += t.elapsed().as_secs_f64();
         }
     }
-    map.free_mark(mark);
     r.uncovered = coverage.into_list();
-    Ok(r)
+    r
 }
 
 /// The f-pattern matching the face of `d` (either side when it is 3-sewn) and the

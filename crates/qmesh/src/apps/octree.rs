@@ -1,0 +1,250 @@
+//! The octree of 2022 Algorithm 5 as plain boxes: the root cube around a surface, leaf
+//! cells addressed by level and integer position, refinement of the cells the surface
+//! touches and 2:1 balance over face and edge neighbours. This is the hand-written
+//! ("direct") counterpart of the query-replace subdivision in `subdivide.rs`.
+
+use rayon::prelude::*;
+use rustc_hash::{FxHashMap, FxHashSet};
+
+use crate::build::{CellKind, CellValues, IndexedMesh};
+use crate::geom::{Aabb, TriangleBvh};
+
+/// The cubic root cell: its lowest corner and side.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RootBox {
+    pub lo: [f64; 3],
+    pub size: f64,
+}
+
+impl RootBox {
+    /// The cube centred on `b` whose side is `b`'s longest extent grown by `margin`
+    /// (a fraction: 0.01 adds 1 %).
+    pub fn around(b: &Aabb, margin: f64) -> RootBox {
+        let e = b.extent();
+        let size = e[0].max(e[1]).max(e[2]).max(f64::MIN_POSITIVE) * (1.0 + margin);
+        let c = b.centre();
+        RootBox { lo: c.map(|x| x - size / 2.0), size }
+    }
+
+    /// The box of a cell.
+    pub fn cell_box(&self, c: OctCell) -> Aabb {
+        let s = self.size / f64::from(1u32 << c.level);
+        let lo = [0, 1, 2].map(|k| self.lo[k] + s * f64::from(c.ijk[k]));
+        Aabb { lo, hi: lo.map(|x| x + s) }
+    }
+
+    /// The level of a box of side `side` (the nearest integer of log2(root / side)).
+    pub fn level_of(&self, side: f64) -> u8 {
+        (self.size / side).log2().round().clamp(0.0, 30.0) as u8
+    }
+}
+
+/// A cell of the octree: its level and its integer position among the 2^level cells
+/// of each axis.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct OctCell {
+    pub level: u8,
+    pub ijk: [u32; 3],
+}
+
+impl OctCell {
+    pub const ROOT: OctCell = OctCell { level: 0, ijk: [0; 3] };
+
+    pub fn children(self) -> impl Iterator<Item = OctCell> {
+        (0..8u32)
+            .map(move |c| OctCell { level: self.level + 1, ijk: [0, 1, 2].map(|k| 2 * self.ijk[k] + (c >> k & 1)) })
+    }
+
+    /// The cell of level `level` ≤ self.level containing this one.
+    pub fn ancestor(self, level: u8) -> OctCell {
+        let s = self.level - level;
+        OctCell { level, ijk: self.ijk.map(|x| x >> s) }
+    }
+}
+
+/// Offsets to the 6 face and 12 edge neighbours.
+fn face_and_edge_offsets() -> impl Iterator<Item = [i64; 3]> {
+    (0..27).map(|i| [i % 3 - 1, i / 3 % 3 - 1, i / 9 - 1]).filter(|d: &[i64; 3]| {
+        let nz = d.iter().filter(|&&x| x != 0).count();
+        nz == 1 || nz == 2
+    })
+}
+
+/// The leaves of an octree.
+#[derive(Clone, Debug)]
+pub struct Octree {
+    pub root: RootBox,
+    pub leaves: FxHashSet<OctCell>,
+}
+
+impl Octree {
+    pub fn new(root: RootBox) -> Octree {
+        Octree { root, leaves: std::iter::once(OctCell::ROOT).collect() }
+    }
+
+    /// Replaces each given leaf by its 8 children; returns the children.
+    pub fn split(&mut self, cells: &[OctCell]) -> Vec<OctCell> {
+        let mut new = Vec::with_capacity(8 * cells.len());
+        for &c in cells {
+            if self.leaves.remove(&c) {
+                new.extend(c.children());
+            }
+        }
+        self.leaves.extend(new.iter().copied());
+        new
+    }
+
+    /// Leaves with a face or edge neighbour leaf at least two levels finer, found from
+    /// the fine side: for each of `fine`, the coarse leaf holding each neighbour position.
+    fn unbalanced_by(&self, fine: &[OctCell]) -> Vec<OctCell> {
+        let mut out: FxHashSet<OctCell> = FxHashSet::default();
+        for &f in fine.iter().filter(|f| f.level >= 2) {
+            let n = 1i64 << f.level;
+            for d in face_and_edge_offsets() {
+                let p = [0, 1, 2].map(|k| i64::from(f.ijk[k]) + d[k]);
+                if p.iter().any(|&x| x < 0 || x >= n) {
+                    continue;
+                }
+                let same = OctCell { level: f.level, ijk: p.map(|x| x as u32) };
+                if let Some(c) = (0..=f.level - 2).map(|l| same.ancestor(l)).find(|c| self.leaves.contains(c)) {
+                    out.insert(c);
+                }
+            }
+        }
+        let mut v: Vec<OctCell> = out.into_iter().collect();
+        v.sort_unstable();
+        v
+    }
+
+    /// Refines until no leaf has a face or edge neighbour two levels finer, starting
+    /// from the leaves just created; returns how many leaves were split.
+    pub fn balance(&mut self, mut created: Vec<OctCell>) -> usize {
+        let mut split = 0;
+        loop {
+            let todo = self.unbalanced_by(&created);
+            if todo.is_empty() {
+                return split;
+            }
+            split += todo.len();
+            created = self.split(&todo);
+        }
+    }
+
+    /// Leaves the surface touches, in a stable order.
+    pub fn touched(&self, surface: &TriangleBvh, below_level: u8) -> Vec<OctCell> {
+        let mut v: Vec<OctCell> = self
+            .leaves
+            .par_iter()
+            .filter(|c| c.level < below_level && surface.intersects_box(&self.root.cell_box(**c)))
+            .copied()
+            .collect();
+        v.sort_unstable();
+        v
+    }
+
+    /// The leaf holding the same-size neighbour of `c` at offset `d`, if that neighbour
+    /// is inside the root and not subdivided further than `c`.
+    fn leaf_at_or_above(&self, c: OctCell, d: [i64; 3]) -> Option<OctCell> {
+        let n = 1i64 << c.level;
+        let p = [0, 1, 2].map(|k| i64::from(c.ijk[k]) + d[k]);
+        if p.iter().any(|&x| x < 0 || x >= n) {
+            return None;
+        }
+        let same = OctCell { level: c.level, ijk: p.map(|x| x as u32) };
+        (0..=c.level).rev().map(|l| same.ancestor(l)).find(|a| self.leaves.contains(a))
+    }
+
+    /// Leaves outside the surface that it does not touch. The untouched leaves are
+    /// grouped into face-connected regions (the surface cannot separate two face
+    /// neighbours it touches neither of); one winding number per region decides.
+    pub fn outside_leaves(&self, surface: &TriangleBvh) -> Vec<OctCell> {
+        let leaves = self.sorted_leaves();
+        let index: FxHashMap<OctCell, usize> = leaves.iter().enumerate().map(|(i, &c)| (c, i)).collect();
+        let touched: Vec<bool> = leaves.par_iter().map(|&c| surface.intersects_box(&self.root.cell_box(c))).collect();
+        let mut parent: Vec<usize> = (0..leaves.len()).collect();
+        fn find(parent: &mut [usize], mut i: usize) -> usize {
+            while parent[i] != i {
+                parent[i] = parent[parent[i]];
+                i = parent[i];
+            }
+            i
+        }
+        const FACES: [[i64; 3]; 6] = [[-1, 0, 0], [1, 0, 0], [0, -1, 0], [0, 1, 0], [0, 0, -1], [0, 0, 1]];
+        for (i, &c) in leaves.iter().enumerate().filter(|&(i, _)| !touched[i]) {
+            for d in FACES {
+                if let Some(j) = self.leaf_at_or_above(c, d).map(|n| index[&n]).filter(|&j| !touched[j]) {
+                    let (a, b) = (find(&mut parent, i), find(&mut parent, j));
+                    parent[a.max(b)] = a.min(b);
+                }
+            }
+        }
+        let mut inside: FxHashMap<usize, bool> = FxHashMap::default();
+        let mut out = Vec::new();
+        for i in (0..leaves.len()).filter(|&i| !touched[i]) {
+            let r = find(&mut parent, i);
+            let ins = *inside.entry(r).or_insert_with(|| surface.contains(self.root.cell_box(leaves[r]).centre()));
+            if !ins {
+                out.push(leaves[i]);
+            }
+        }
+        out
+    }
+
+    /// Leaves sorted by (level, position): a deterministic order for output.
+    pub fn sorted_leaves(&self) -> Vec<OctCell> {
+        let mut v: Vec<OctCell> = self.leaves.iter().copied().collect();
+        v.sort_unstable();
+        v
+    }
+
+    /// Hexahedra of the leaves (VTK order) with their `level` array. Points are shared
+    /// through their position on the finest lattice.
+    pub fn to_mesh(&self) -> IndexedMesh {
+        let leaves = self.sorted_leaves();
+        let fine = leaves.iter().map(|c| c.level).max().unwrap_or(0);
+        let mut mesh = IndexedMesh::new();
+        let mut ids: FxHashMap<[u32; 3], u32> = FxHashMap::default();
+        let step = self.root.size / f64::from(1u32 << fine);
+        for c in &leaves {
+            let s = 1u32 << (fine - c.level);
+            let corner = |i: usize| {
+                let b = crate::build::HEX_CORNER_BITS[i];
+                [0, 1, 2].map(|k| (c.ijk[k] + (b >> k & 1)) * s)
+            };
+            let mut nodes = [0u32; 8];
+            for (i, n) in nodes.iter_mut().enumerate() {
+                let q = corner(i);
+                *n = *ids.entry(q).or_insert_with(|| {
+                    mesh.points.push([0, 1, 2].map(|k| self.root.lo[k] + step * f64::from(q[k])));
+                    (mesh.points.len() - 1) as u32
+                });
+            }
+            mesh.push_cell(CellKind::Hex, &nodes, None);
+        }
+        mesh.set_cell_array("level", CellValues::Int(leaves.iter().map(|c| i32::from(c.level)).collect()));
+        mesh
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn balance_splits_coarse_neighbours() {
+        let mut t = Octree::new(RootBox { lo: [0.0; 3], size: 1.0 });
+        let kids = t.split(&[OctCell::ROOT]);
+        // Split the corner child twice more: its face neighbours (level 1) must split.
+        let c = kids[0];
+        let g = t.split(&[c]);
+        let gg = t.split(&[g[0]]);
+        assert_eq!(t.leaves.len(), 7 + 7 + 8);
+        let n = t.balance(gg);
+        assert_eq!(n, 0, "level 3 cells at the corner touch only level ≥ 2 cells");
+        let deep = t.split(&[g[7]]); // the level-2 cell at the centre of child 0
+        let n = t.balance(deep);
+        // g[7] touches the 7 other level-1 children by faces or edges or only a corner:
+        // the 3 face and 3 edge neighbours split, the corner-only one stays.
+        assert_eq!(n, 6);
+    }
+}

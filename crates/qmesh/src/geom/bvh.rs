@@ -1,0 +1,246 @@
+//! A bounding-volume hierarchy over the triangles of a surface: which boxes the surface
+//! touches (octree refinement, 2022 §7.1) and the data the winding number needs.
+
+use super::{cross, sub};
+
+/// Axis-aligned box.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Aabb {
+    pub lo: [f64; 3],
+    pub hi: [f64; 3],
+}
+
+impl Aabb {
+    pub const EMPTY: Aabb = Aabb { lo: [f64::INFINITY; 3], hi: [f64::NEG_INFINITY; 3] };
+
+    pub fn add(&mut self, p: [f64; 3]) {
+        for (k, &x) in p.iter().enumerate() {
+            self.lo[k] = self.lo[k].min(x);
+            self.hi[k] = self.hi[k].max(x);
+        }
+    }
+
+    pub fn of(points: impl IntoIterator<Item = [f64; 3]>) -> Aabb {
+        let mut b = Aabb::EMPTY;
+        points.into_iter().for_each(|p| b.add(p));
+        b
+    }
+
+    pub fn overlaps(&self, o: &Aabb) -> bool {
+        (0..3).all(|k| self.lo[k] <= o.hi[k] && o.lo[k] <= self.hi[k])
+    }
+
+    pub fn centre(&self) -> [f64; 3] {
+        [0, 1, 2].map(|k| 0.5 * (self.lo[k] + self.hi[k]))
+    }
+
+    pub fn extent(&self) -> [f64; 3] {
+        [0, 1, 2].map(|k| self.hi[k] - self.lo[k])
+    }
+}
+
+/// One node: its box, its triangles `start..start + count` when a leaf (count > 0),
+/// else its children `left` and `left + 1`; plus the far-field data of its triangles.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Node {
+    pub bounds: Aabb,
+    pub start: u32,
+    pub count: u32,
+    pub left: u32,
+    /// Sum of the triangles' area vectors (½ (b − a) × (c − a)).
+    pub area_normal: [f64; 3],
+    /// Area-weighted centroid of the triangles.
+    pub centre: [f64; 3],
+    /// Largest distance from `centre` to the node's box.
+    pub radius: f64,
+}
+
+/// Triangles in BVH order with their tree.
+#[derive(Clone, Debug)]
+pub struct TriangleBvh {
+    pub(crate) triangles: Vec<[[f64; 3]; 3]>,
+    pub(crate) nodes: Vec<Node>,
+}
+
+const LEAF_SIZE: usize = 4;
+
+fn area_vector(t: &[[f64; 3]; 3]) -> [f64; 3] {
+    cross(sub(t[1], t[0]), sub(t[2], t[0])).map(|c| 0.5 * c)
+}
+
+impl TriangleBvh {
+    /// Builds the tree (median split on the longest axis of the centroids).
+    pub fn new(mut triangles: Vec<[[f64; 3]; 3]>) -> TriangleBvh {
+        let mut nodes = Vec::with_capacity(2 * triangles.len() / LEAF_SIZE + 1);
+        if !triangles.is_empty() {
+            nodes.push(Self::leaf(&triangles, 0, triangles.len()));
+            let mut stack = vec![0usize];
+            while let Some(i) = stack.pop() {
+                let (start, count) = (nodes[i].start as usize, nodes[i].count as usize);
+                if count <= LEAF_SIZE {
+                    continue;
+                }
+                let slice = &mut triangles[start..start + count];
+                let cb = Aabb::of(slice.iter().map(tri_centroid));
+                let e = cb.extent();
+                let axis = (0..3).max_by(|&a, &b| e[a].total_cmp(&e[b])).unwrap_or(0);
+                let mid = count / 2;
+                slice.select_nth_unstable_by(mid, |a, b| tri_centroid(a)[axis].total_cmp(&tri_centroid(b)[axis]));
+                let left = nodes.len();
+                nodes.push(Self::leaf(&triangles, start, mid));
+                nodes.push(Self::leaf(&triangles, start + mid, count - mid));
+                nodes[i].count = 0;
+                nodes[i].left = left as u32;
+                stack.extend([left, left + 1]);
+            }
+        }
+        TriangleBvh { triangles, nodes }
+    }
+
+    /// Triangles of a polygon surface (polygons fanned from their first vertex).
+    pub fn from_polygons<'a>(points: &[[f64; 3]], polygons: impl IntoIterator<Item = &'a [u32]>) -> TriangleBvh {
+        let mut tris = Vec::new();
+        for poly in polygons {
+            for k in 1..poly.len().saturating_sub(1) {
+                tris.push([poly[0], poly[k], poly[k + 1]].map(|v| points[v as usize]));
+            }
+        }
+        TriangleBvh::new(tris)
+    }
+
+    fn leaf(triangles: &[[[f64; 3]; 3]], start: usize, count: usize) -> Node {
+        let tris = &triangles[start..start + count];
+        let bounds = Aabb::of(tris.iter().flatten().copied());
+        let (mut an, mut weighted, mut area) = ([0.0; 3], [0.0; 3], 0.0);
+        for t in tris {
+            let a = area_vector(t);
+            let w = super::dot(a, a).sqrt();
+            let c = tri_centroid(t);
+            for k in 0..3 {
+                an[k] += a[k];
+                weighted[k] += w * c[k];
+            }
+            area += w;
+        }
+        let centre = if area > 0.0 { weighted.map(|c| c / area) } else { bounds.centre() };
+        let radius = (0..8)
+            .map(|c| {
+                let p = [0, 1, 2].map(|k| if c >> k & 1 == 0 { bounds.lo[k] } else { bounds.hi[k] });
+                let d = sub(p, centre);
+                super::dot(d, d).sqrt()
+            })
+            .fold(0.0, f64::max);
+        Node { bounds, start: start as u32, count: count as u32, left: 0, area_normal: an, centre, radius }
+    }
+
+    pub fn len(&self) -> usize {
+        self.triangles.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.triangles.is_empty()
+    }
+
+    /// Bounding box of all triangles.
+    pub fn bounds(&self) -> Aabb {
+        self.nodes.first().map_or(Aabb::EMPTY, |n| n.bounds)
+    }
+
+    /// Whether some triangle touches the closed box `b` (separating-axis test, with the
+    /// box grown by 10⁻¹⁰ of its size so that touching counts as intersecting: a
+    /// refinement decision errs toward refining).
+    pub fn intersects_box(&self, b: &Aabb) -> bool {
+        if self.nodes.is_empty() {
+            return false;
+        }
+        let c = b.centre();
+        let h = b.extent().map(|e| 0.5 * e * (1.0 + 1e-10) + f64::MIN_POSITIVE);
+        let grown = Aabb { lo: [0, 1, 2].map(|k| c[k] - h[k]), hi: [0, 1, 2].map(|k| c[k] + h[k]) };
+        let mut stack = vec![0u32];
+        while let Some(i) = stack.pop() {
+            let n = &self.nodes[i as usize];
+            if !n.bounds.overlaps(&grown) {
+                continue;
+            }
+            if n.count == 0 {
+                stack.extend([n.left, n.left + 1]);
+                continue;
+            }
+            let tris = &self.triangles[n.start as usize..(n.start + n.count) as usize];
+            if tris.iter().any(|t| triangle_overlaps_box(t, c, h)) {
+                return true;
+            }
+        }
+        false
+    }
+}
+
+fn tri_centroid(t: &[[f64; 3]; 3]) -> [f64; 3] {
+    [0, 1, 2].map(|k| (t[0][k] + t[1][k] + t[2][k]) / 3.0)
+}
+
+/// Separating-axis test of a triangle against the box of centre `c` and half sizes `h`
+/// (Akenine-Möller's 13 axes: 3 box normals, the triangle normal, 9 edge cross products).
+pub fn triangle_overlaps_box(t: &[[f64; 3]; 3], c: [f64; 3], h: [f64; 3]) -> bool {
+    let v = t.map(|p| sub(p, c));
+    let separated = |axis: [f64; 3]| {
+        let p = v.map(|x| super::dot(x, axis));
+        let r = h[0] * axis[0].abs() + h[1] * axis[1].abs() + h[2] * axis[2].abs();
+        p.iter().copied().fold(f64::INFINITY, f64::min) > r || p.iter().copied().fold(f64::NEG_INFINITY, f64::max) < -r
+    };
+    let units = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+    if units.iter().any(|&u| separated(u)) {
+        return false;
+    }
+    let edges = [sub(v[1], v[0]), sub(v[2], v[1]), sub(v[0], v[2])];
+    if separated(cross(edges[0], edges[1])) {
+        return false;
+    }
+    !edges.iter().any(|&e| units.iter().any(|&u| separated(cross(e, u))))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn unit_box() -> Aabb {
+        Aabb { lo: [0.0; 3], hi: [1.0; 3] }
+    }
+
+    #[test]
+    fn box_test_cases() {
+        let b = unit_box();
+        let hit = TriangleBvh::new(vec![[[0.5, 0.5, -1.0], [0.5, 0.5, 2.0], [3.0, 0.5, 0.5]]]);
+        assert!(hit.intersects_box(&b));
+        // Near the box's corner but beyond its diagonal plane: only the triangle-normal
+        // or an edge axis separates it.
+        let miss =
+            TriangleBvh::new(vec![[[1.5, 0.0, 1.5], [1.5, 1.5, 0.0], [0.0, 1.5, 1.5]].map(|p| p.map(|c| c + 0.2))]);
+        assert!(!miss.intersects_box(&b));
+        let touching = TriangleBvh::new(vec![[[1.0, 0.0, 0.0], [2.0, 0.0, 0.0], [2.0, 1.0, 0.0]]]);
+        assert!(touching.intersects_box(&b));
+    }
+
+    #[test]
+    fn bvh_agrees_with_brute_force() {
+        // A fan of thin triangles around a helix, boxes on a grid.
+        let tris: Vec<[[f64; 3]; 3]> = (0..200)
+            .map(|i| {
+                let a = i as f64 * 0.1;
+                let p = [2.0 + a.cos(), 2.0 + a.sin(), a * 0.05];
+                [p, [p[0] + 0.3, p[1], p[2]], [p[0], p[1] + 0.05, p[2] + 0.3]]
+            })
+            .collect();
+        let bvh = TriangleBvh::new(tris.clone());
+        for i in 0..8 {
+            for j in 0..8 {
+                for k in 0..4 {
+                    let lo = [i as f64 * 0.5, j as f64 * 0.5, k as f64 * 0.5];
+                    let b = Aabb { lo, hi: lo.map(|x| x + 0.5) };
+                    let brute = tris.iter().any(|t| triangle_overlaps_box(t, b.centre(), b.extent().map(|e| e / 2.0)));
+                    assert_eq!(bvh.intersects_box(&b), brute, "box {lo:?}");
+                }
+            }
+        }
+    }
+}

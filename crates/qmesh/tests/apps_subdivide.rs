@@ -1,0 +1,96 @@
+//! Octree subdivision (2022 Algorithm 5): query-replace and direct give the same
+//! leaves, the map stays valid, 2:1 balance holds, counts follow the refinement.
+
+mod common;
+
+use qmesh::apps::{SubdivideOptions, subdivide};
+use qmesh::build::{CellValues, IndexedMesh};
+use qmesh::geom::TriangleBvh;
+use qmesh::io::read_surface;
+use rustc_hash::FxHashMap;
+
+/// A tilted triangle and a small box-shaped surface: touches cells at every level.
+fn test_surface() -> TriangleBvh {
+    let s = [0.1, 0.2, 0.15];
+    let box_corner = |i: u32| [0, 1, 2].map(|k| s[k] + 0.3 * f64::from(i >> k & 1));
+    let quads = [[0u32, 2, 3, 1], [4, 5, 7, 6], [0, 1, 5, 4], [2, 6, 7, 3], [0, 4, 6, 2], [1, 3, 7, 5]];
+    let mut tris = vec![[[0.0, 0.0, 0.9], [1.0, 0.1, 1.0], [0.3, 1.0, 0.8]]];
+    for q in quads {
+        tris.push([box_corner(q[0]), box_corner(q[1]), box_corner(q[2])]);
+        tris.push([box_corner(q[0]), box_corner(q[2]), box_corner(q[3])]);
+    }
+    TriangleBvh::new(tris)
+}
+
+/// Largest number of mesh points strictly inside one hexahedron edge (2:1 balance
+/// allows one: the midpoint), checked by position, independently of the octree.
+fn max_points_inside_an_edge(m: &IndexedMesh) -> usize {
+    let key = |p: [f64; 3]| p.map(|c| (c * 1e9).round() as i64);
+    let at: FxHashMap<[i64; 3], u32> = m.points.iter().enumerate().map(|(i, &p)| (key(p), i as u32)).collect();
+    let mut worst = 0;
+    for c in 0..m.nb_cells() {
+        let n = m.cell(c).1;
+        let edges = [(0, 1), (1, 2), (2, 3), (3, 0), (4, 5), (5, 6), (6, 7), (7, 4), (0, 4), (1, 5), (2, 6), (3, 7)];
+        for (a, b) in edges {
+            let (p, q) = (m.points[n[a] as usize], m.points[n[b] as usize]);
+            // Points at 1/8 steps along the edge (a level three deeper would show there).
+            let inside = (1..8)
+                .filter(|&k| {
+                    let t = f64::from(k) / 8.0;
+                    at.contains_key(&key([0, 1, 2].map(|i| p[i] + t * (q[i] - p[i]))))
+                })
+                .count();
+            worst = worst.max(inside);
+        }
+    }
+    worst
+}
+
+fn run(surface: &TriangleBvh, levels: u8, direct: bool) -> qmesh::apps::Subdivision {
+    let opts = SubdivideOptions { levels, direct, ..Default::default() };
+    subdivide(surface, &opts, &|_| {}).expect("subdivide")
+}
+
+#[test]
+fn query_replace_and_direct_agree_and_stay_balanced() {
+    let surface = test_surface();
+    for levels in 1..=5 {
+        let qr = run(&surface, levels, false);
+        let direct = run(&surface, levels, true);
+        assert_eq!(qr.mesh, direct.mesh, "levels {levels}: same hexahedra and levels");
+        let map = qr.map.as_ref().expect("query-replace keeps its map");
+        assert!(map.is_valid().is_empty(), "levels {levels}");
+        assert_eq!(map.count_cells().volumes, qr.report.volumes);
+        // Each volume query-replace turns one cell into 8.
+        assert_eq!(qr.report.volumes, 1 + 7 * qr.report.volumes_replaced);
+        assert_eq!(max_points_inside_an_edge(&qr.mesh), if levels == 1 { 0 } else { 1 }, "levels {levels}");
+        let Some(CellValues::Int(level)) = qr.mesh.cell_array("level") else { panic!("level array") };
+        assert_eq!(level.iter().copied().max(), Some(i32::from(levels)));
+    }
+}
+
+#[test]
+fn balance_is_needed_and_applied() {
+    let surface = test_surface();
+    let r = run(&surface, 5, true).report;
+    assert!(r.balance_splits > 0, "this surface forces balance splits: {r:?}");
+    assert_eq!(r.per_level.iter().sum::<usize>(), r.volumes);
+}
+
+#[test]
+fn bunny_at_level_four_both_ways() {
+    let Some(dir) = common::data_dir() else { return };
+    let s = read_surface(&dir.join("surface/bunny.off"), None).expect("bunny");
+    let bvh = TriangleBvh::from_polygons(&s.points, (0..s.nb_polygons()).map(|i| s.polygon(i)));
+    let qr = run(&bvh, 4, false);
+    let direct = run(&bvh, 4, true);
+    assert_eq!(qr.mesh, direct.mesh);
+    assert_eq!(qr.report.volumes, 1842);
+    assert!(qr.map.expect("map").is_valid().is_empty());
+    assert_eq!(max_points_inside_an_edge(&qr.mesh), 1);
+    // Removing the outside keeps the cells the surface touches and those inside.
+    let opts = SubdivideOptions { levels: 4, direct: true, remove_outside: true, ..Default::default() };
+    let kept = subdivide(&bvh, &opts, &|_| {}).expect("subdivide").report;
+    assert_eq!(kept.volumes + kept.removed_outside, 1842);
+    assert!(kept.removed_outside > 500 && kept.volumes > 1000, "{kept:?}");
+}
