@@ -34,6 +34,8 @@ enum Command {
     Patterns(cmd::patterns::Args),
     /// Octree hexahedral subdivision of a surface (2022 Algorithm 5), with 2:1 balance.
     Subdivide(cmd::subdivide::Args),
+    /// Conformal transitions of a 2:1 octree hex mesh (2022 Algorithm 7).
+    Conformal(cmd::conformal::Args),
     /// A short tour on built-in inputs: generate, inspect, split edges, write files.
     Demo(cmd::demo::Args),
 }
@@ -50,6 +52,7 @@ fn main() -> ExitCode {
         Command::Replace(a) => cmd::replace::run(a),
         Command::Quality(a) => cmd::quality::run(a),
         Command::Subdivide(a) => cmd::subdivide::run(a),
+        Command::Conformal(a) => cmd::conformal::run(a),
     };
     match result {
         Ok(code) => code,

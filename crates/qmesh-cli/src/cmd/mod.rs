@@ -1,5 +1,6 @@
 //! Subcommands.
 
+pub mod conformal;
 pub mod convert;
 pub mod demo;
 pub mod generate;

@@ -186,6 +186,7 @@ pub fn uncovered_json(u: &[Uncovered]) -> serde_json::Value {
 pub enum Generated {
     HexSubdivision,
     Tet2hex,
+    Transitions,
 }
 
 impl From<Generated> for GeneratedKind {
@@ -193,6 +194,7 @@ impl From<Generated> for GeneratedKind {
         match g {
             Generated::HexSubdivision => GeneratedKind::HexSubdivision,
             Generated::Tet2hex => GeneratedKind::Tet2Hex,
+            Generated::Transitions => GeneratedKind::Transitions,
         }
     }
 }

@@ -4,6 +4,9 @@
 
 use std::path::PathBuf;
 
+use super::transitions::{
+    transition_configurations, transition_face, transition_face_configurations, transition_volume,
+};
 use crate::build::{BuildOptions, CellKind, IndexedMesh, build_map};
 use crate::pattern::{FlagRule, PatternError, PatternSet, pattern_from_map};
 
@@ -14,6 +17,9 @@ pub enum GeneratedKind {
     HexSubdivision,
     /// Tetrahedra to hexahedra: edges split in 2, triangles in 3 quads, tets in 4 hexes.
     Tet2Hex,
+    /// Conformal transitions of 2:1 octree meshes: every configuration of refined faces
+    /// and split edges, one v-pattern per class under rotation (see `transitions.rs`).
+    Transitions,
 }
 
 impl GeneratedKind {
@@ -21,6 +27,7 @@ impl GeneratedKind {
         match self {
             GeneratedKind::HexSubdivision => "hex-subdivision",
             GeneratedKind::Tet2Hex => "tet2hex",
+            GeneratedKind::Transitions => "transitions",
         }
     }
 }
@@ -112,12 +119,23 @@ fn tet_4_hexes() -> IndexedMesh {
     m
 }
 
-/// The meshes of a generated set: (file stem, f- or v-pattern mesh) pairs.
-pub fn generated_pattern_meshes(kind: GeneratedKind) -> Vec<(&'static str, bool, IndexedMesh)> {
+/// The meshes of a generated set: (file stem, is a v-pattern, mesh).
+pub fn generated_pattern_meshes(kind: GeneratedKind) -> Vec<(String, bool, IndexedMesh)> {
     match kind {
-        GeneratedKind::HexSubdivision => vec![("square-2x2", false, square_2x2()), ("cube-2x2x2", true, cube_2x2x2())],
+        GeneratedKind::HexSubdivision => {
+            vec![("square-2x2".into(), false, square_2x2()), ("cube-2x2x2".into(), true, cube_2x2x2())]
+        }
         GeneratedKind::Tet2Hex => {
-            vec![("triangle-3-quads", false, triangle_3_quads()), ("tet-4-hexes", true, tet_4_hexes())]
+            vec![("triangle-3-quads".into(), false, triangle_3_quads()), ("tet-4-hexes".into(), true, tet_4_hexes())]
+        }
+        GeneratedKind::Transitions => {
+            let faces = transition_face_configurations()
+                .into_iter()
+                .map(|(stem, split)| (stem.to_string(), false, transition_face(split)));
+            let volumes = transition_configurations().1.into_iter().map(|c| {
+                (format!("transition-f{:02x}-e{:03x}", c.refined_faces, c.split_edges), true, transition_volume(c))
+            });
+            faces.chain(volumes).collect()
         }
     }
 }
@@ -130,7 +148,7 @@ pub fn generated_pattern_set(kind: GeneratedKind, rule: FlagRule) -> Result<Patt
     let mut set = PatternSet::default();
     for (stem, _, mesh) in generated_pattern_meshes(kind) {
         let (map, _) = build_map(mesh, &BuildOptions { fix_orientation: true })
-            .map_err(|e| PatternError::Invalid { path: PathBuf::from(stem), msg: e.to_string() })?;
+            .map_err(|e| PatternError::Invalid { path: PathBuf::from(&stem), msg: e.to_string() })?;
         set.insert(pattern_from_map(&PathBuf::from(format!("{}/{stem}", kind.name())), map, rule, &[])?);
     }
     Ok(set)

@@ -7,8 +7,9 @@ use std::time::Instant;
 
 use rayon::prelude::*;
 
+use super::box_cells::{cell_of, flag_box_corners, is_corner, map_cells, volume_box};
 use super::generated_patterns::{GeneratedKind, generated_pattern_set};
-use super::octree::{OctCell, Octree, RootBox};
+use super::octree::{Octree, RootBox};
 use crate::build::{BuildOptions, IndexedMesh, build_map};
 use crate::cmap::{CMap3, Dart, MapError, Mark, Orbit, OrbitWalker};
 use crate::geom::{Aabb, TriangleBvh};
@@ -116,33 +117,6 @@ fn subdivide_direct(
     (tree, r)
 }
 
-/// Tolerance for "on the corner lattice", relative to the cell size.
-const LATTICE_TOL: f64 = 1e-6;
-
-/// The box of the volume of `d`.
-fn volume_box(map: &CMap3, d: Dart, w: &mut OrbitWalker) -> Aabb {
-    Aabb::of(w.collect(map, d, Orbit::Volume).iter().map(|&x| map.point(x)))
-}
-
-/// Whether `p` is a corner of box `b`.
-fn is_corner(b: &Aabb, p: [f64; 3]) -> bool {
-    let tol = LATTICE_TOL * b.extent()[0];
-    (0..3).all(|k| (p[k] - b.lo[k]).abs() <= tol || (p[k] - b.hi[k]).abs() <= tol)
-}
-
-/// The octree cell a box is.
-fn cell_of(root: RootBox, b: &Aabb) -> OctCell {
-    let level = root.level_of(b.extent()[0]);
-    let s = root.size / f64::from(1u32 << level);
-    OctCell { level, ijk: [0, 1, 2].map(|k| ((b.lo[k] - root.lo[k]) / s).round().max(0.0) as u32) }
-}
-
-/// The octree cells of the map's volumes.
-fn map_cells(map: &CMap3, root: RootBox) -> Vec<OctCell> {
-    let mut w = OrbitWalker::new();
-    map.cells(Orbit::Volume).map(|d| cell_of(root, &volume_box(map, d, &mut w))).collect()
-}
-
 fn subdivide_qr(
     root: RootBox,
     surface: &TriangleBvh,
@@ -247,10 +221,8 @@ fn refine(
     let seen = map.reserve_mark()?;
     let mut faces = Vec::new();
     for (&d, b) in cells.iter().zip(&boxes) {
+        flag_box_corners(map, flag, d, b, &mut w);
         for &x in w.collect(map, d, Orbit::Volume) {
-            if is_corner(b, map.point(x)) {
-                map.mark(x, flag);
-            }
             if !map.is_marked(x, seen) {
                 faces.push(x);
                 let face = map.orbit(x, Orbit::Face);

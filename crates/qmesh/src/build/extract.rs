@@ -33,16 +33,6 @@ fn above(map: &CMap3, d: Dart) -> u32 {
     map.vertex_of(map.next(side))
 }
 
-fn face_len(map: &CMap3, d: Dart) -> usize {
-    let mut n = 1;
-    let mut x = map.next(d);
-    while x != d {
-        n += 1;
-        x = map.next(x);
-    }
-    n
-}
-
 fn cycle(map: &CMap3, d: Dart, n: usize) -> Vec<Dart> {
     let mut out = Vec::with_capacity(n);
     let mut x = d;
@@ -69,7 +59,7 @@ fn face_id(map: &CMap3, x: Dart) -> u32 {
 fn small_volume_faces(map: &CMap3, d: Dart) -> Option<SmallFaces> {
     let mut ids = [0u32; 6];
     let mut faces = SmallFaces { faces: [(d, 0); 6], len: 1 };
-    faces.faces[0] = (d, face_len(map, d));
+    faces.faces[0] = (d, map.face_degree(d));
     ids[0] = face_id(map, d);
     let mut k = 0;
     while k < faces.len {
@@ -87,7 +77,7 @@ fn small_volume_faces(map: &CMap3, d: Dart) -> Option<SmallFaces> {
                     return None;
                 }
                 ids[faces.len] = id;
-                faces.faces[faces.len] = (o, face_len(map, o));
+                faces.faces[faces.len] = (o, map.face_degree(o));
                 faces.len += 1;
             }
             x = map.next(x);
@@ -128,7 +118,7 @@ fn polyhedron_stream(map: &CMap3, d: Dart, walker: &mut OrbitWalker) -> (CellKin
     let mut stream = vec![0u32];
     for &x in &darts {
         if in_face.insert(x) {
-            let n = face_len(map, x);
+            let n = map.face_degree(x);
             let c = cycle(map, x, n);
             c.iter().skip(1).for_each(|&y| {
                 in_face.insert(y);
@@ -263,7 +253,7 @@ pub fn extract(map: &CMap3) -> (IndexedMesh, ExtractedKinds) {
         }
     } else {
         for d in map.cells(Orbit::HalfFace) {
-            polys.push(cycle(map, d, face_len(map, d)).iter().map(|&x| map.vertex_of(x)).collect());
+            polys.push(cycle(map, d, map.face_degree(d)).iter().map(|&x| map.vertex_of(x)).collect());
         }
     }
     let mut newid = vec![u32::MAX; map.nb_vertex_ids()];
@@ -317,7 +307,7 @@ pub fn boundary_polygons(map: &CMap3) -> IndexedMesh {
         if !map.is_free(d, 3) {
             continue;
         }
-        let mut p: Vec<u32> = cycle(map, d, face_len(map, d)).iter().map(|&x| map.vertex_of(x)).collect();
+        let mut p: Vec<u32> = cycle(map, d, map.face_degree(d)).iter().map(|&x| map.vertex_of(x)).collect();
         p.reverse();
         for v in p.iter_mut() {
             if newid[*v as usize] == u32::MAX {

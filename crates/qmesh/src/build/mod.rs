@@ -5,17 +5,21 @@
 //! along opposite half-edges; [`extract`] goes back to indexed cells for writing.
 
 mod adjacency;
+mod conformity;
 mod error;
 mod extract;
 mod indexed;
+mod quality;
 mod surface;
 mod volume;
 
+pub use conformity::non_conformal_faces;
 pub use error::{BuildError, Subject};
 pub use extract::{
     ExtractedKinds, boundary_polygons, classify_volume, count_cell_kinds, count_kinds_of, extract, recognise_volume,
 };
 pub use indexed::{CellArray, CellKind, CellValues, HEX_CORNER_BITS, IndexedMesh};
+pub use quality::{QualityByKind, QualitySummary, cell_scaled_jacobian, quality_by_kind};
 pub use surface::build_surface_map;
 pub use volume::{BuildOptions, BuildReport, build_volume_map, build_volume_map_owned};
 

@@ -206,6 +206,17 @@ impl CMap3 {
         Cells { map: self, orbit, seen: BitSet::with_len(self.dart_capacity()), stack: Vec::new(), next: 1 }
     }
 
+    /// Number of darts (edges) of the half-face of `d`.
+    pub fn face_degree(&self, d: Dart) -> usize {
+        let mut n = 1;
+        let mut x = self.next(d);
+        while x != d {
+            n += 1;
+            x = self.next(x);
+        }
+        n
+    }
+
     /// The darts of the orbit of `d` (allocates; loops should reuse an [`OrbitWalker`]).
     pub fn orbit(&self, d: Dart, orbit: Orbit) -> Vec<Dart> {
         let mut w = OrbitWalker::new();

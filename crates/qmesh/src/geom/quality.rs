@@ -1,5 +1,6 @@
 //! Element quality with Verdict's definitions (GUIDE §3): the scaled Jacobian of
-//! hexahedra (minimum over the 8 corners and the centre) and tetrahedra.
+//! hexahedra (minimum over the 8 corners and the centre) and tetrahedra; for prisms
+//! and pyramids the minimum corner Jacobian, normalised so the equilateral cell scores 1.
 
 use super::{cross, dot, sub};
 
@@ -67,6 +68,31 @@ pub fn tet_scaled_jacobian(p: &[[f64; 3]; 4]) -> f64 {
     std::f64::consts::SQRT_2 * j / lengths
 }
 
+/// Scaled Jacobian of a prism (VTK wedge order: 0-1-2 turns away from 3-4-5): the
+/// minimum over the 6 corners of the unit-edge determinant, times 2/√3 (the value at
+/// an equilateral triangle's corner), capped at 1.
+pub fn prism_scaled_jacobian(p: &[[f64; 3]; 6]) -> f64 {
+    const CORNERS: [[usize; 4]; 6] =
+        [[0, 2, 1, 3], [1, 0, 2, 4], [2, 1, 0, 5], [3, 4, 5, 0], [4, 5, 3, 1], [5, 3, 4, 2]];
+    corner_minimum(p, &CORNERS).map_or(0.0, |j| (j * 2.0 / 3f64.sqrt()).min(1.0))
+}
+
+/// Scaled Jacobian of a pyramid (VTK order: base 0-1-2-3 turns toward apex 4): the
+/// minimum over the 4 base corners of the unit-edge determinant, times √2 (its value
+/// in the pyramid with equilateral faces), capped at 1.
+pub fn pyramid_scaled_jacobian(p: &[[f64; 3]; 5]) -> f64 {
+    const CORNERS: [[usize; 4]; 4] = [[0, 1, 3, 4], [1, 2, 0, 4], [2, 3, 1, 4], [3, 0, 2, 4]];
+    corner_minimum(p, &CORNERS).map_or(0.0, |j| (j * std::f64::consts::SQRT_2).min(1.0))
+}
+
+/// Minimum of the unit-edge determinants at the given corner frames [origin, a, b, c].
+fn corner_minimum(p: &[[f64; 3]], corners: &[[usize; 4]]) -> Option<f64> {
+    corners
+        .iter()
+        .map(|&[o, a, b, c]| unit_det(sub(p[a], p[o]), sub(p[b], p[o]), sub(p[c], p[o])))
+        .try_fold(f64::INFINITY, |m, j| j.map(|j| m.min(j)))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -84,5 +110,17 @@ mod tests {
         // VTK order has 0-1-2 turning toward 3.
         let j = tet_scaled_jacobian(&[regular[0], regular[2], regular[1], regular[3]]);
         assert!((j.abs() - 1.0).abs() < 1e-12, "{j}");
+        let h = 3f64.sqrt() / 2.0;
+        let prism = [[0., 0., 0.], [0.5, h, 0.], [1., 0., 0.], [0., 0., 1.], [0.5, h, 1.], [1., 0., 1.]];
+        assert!((prism_scaled_jacobian(&prism) - 1.0).abs() < 1e-12);
+        let mut inverted = prism;
+        inverted.swap(1, 2);
+        inverted.swap(4, 5);
+        assert!(prism_scaled_jacobian(&inverted) < 0.0);
+        let pyramid = [[0., 0., 0.], [1., 0., 0.], [1., 1., 0.], [0., 1., 0.], [0.5, 0.5, 0.5f64.sqrt()]];
+        assert!((pyramid_scaled_jacobian(&pyramid) - 1.0).abs() < 1e-12);
+        let mut flat = pyramid;
+        flat[4][2] = -0.2;
+        assert!(pyramid_scaled_jacobian(&flat) < 0.0);
     }
 }

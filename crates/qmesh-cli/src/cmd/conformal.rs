@@ -1,0 +1,120 @@
+//! `qmesh conformal IN -o OUT [--patterns DIR…]`: conformal transitions of a 2:1
+//! octree hexahedral mesh (2022 Algorithm 7).
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use anyhow::{Result, bail};
+use qmesh::apps::{GeneratedKind, conformal, generated_pattern_set};
+use qmesh::build::extract;
+use qmesh::io::{Loaded, WriteOptions, read, resolve_format, write_indexed};
+use qmesh::pattern::{FlagRule, PatternKind, PatternSet, load_pattern_dir};
+use serde_json::json;
+
+use super::parse_format;
+
+#[derive(clap::Args, Debug)]
+pub struct Args {
+    /// A 2:1-balanced octree hexahedral mesh (e.g. from `qmesh subdivide`).
+    pub input: PathBuf,
+    /// Output mesh (hexahedra, prisms, pyramids, tetrahedra).
+    #[arg(short, long)]
+    pub output: PathBuf,
+    /// Transition pattern folders (default: qmesh's generated `transitions` set). The
+    /// papers' set: hexa-325-patterns and square-5-patterns.
+    #[arg(long, num_args = 1..)]
+    pub patterns: Vec<PathBuf>,
+    /// Test every pattern directly instead of looking signatures up.
+    #[arg(long)]
+    pub no_signatures: bool,
+    /// Input format, overriding the extension.
+    #[arg(long)]
+    pub format: Option<String>,
+    /// Print a JSON report.
+    #[arg(long)]
+    pub json: bool,
+    /// Allow the output to be the input file.
+    #[arg(long)]
+    pub force: bool,
+}
+
+pub fn run(a: Args) -> Result<ExitCode> {
+    if !a.force && super::convert::same_file(&a.input, &a.output) {
+        bail!("{} is the input file; refusing to overwrite it (use --force)", a.output.display());
+    }
+    let out_format = resolve_format(&a.output, None)?;
+    let set = if a.patterns.is_empty() {
+        generated_pattern_set(GeneratedKind::Transitions, FlagRule::Corners)?
+    } else {
+        let mut set = PatternSet::default();
+        for dir in &a.patterns {
+            load_pattern_dir(dir, FlagRule::Corners).patterns.into_iter().for_each(|p| {
+                set.insert(p);
+            });
+        }
+        set
+    };
+    if set.count(PatternKind::Volume) == 0 {
+        bail!("no v-pattern in {:?}", a.patterns);
+    }
+    let mesh = match read(&a.input, parse_format(&a.format)?)? {
+        Loaded::Indexed(m) if m.is_volume() => m,
+        _ => bail!("{}: expected a hexahedral volume mesh", a.input.display()),
+    };
+    let (map, r) = conformal(&mesh, &set, !a.no_signatures)?;
+    let valid = map.is_valid().is_empty();
+    let nonconformal = qmesh::build::non_conformal_faces(&map);
+    let (cells, _) = extract(&map);
+    let quality = qmesh::build::quality_by_kind(&cells);
+    write_indexed(&a.output, &cells, out_format, &WriteOptions::default())?;
+    let k = &r.kinds;
+    let rep = &r.replace;
+    if a.json {
+        let j = json!({
+            "input": a.input.display().to_string(),
+            "output": a.output.display().to_string(),
+            "f_patterns": set.count(PatternKind::Face),
+            "v_patterns": set.count(PatternKind::Volume),
+            "hanging_vertices": r.hanging.hanging_vertices,
+            "cells_with_hanging_vertices": r.hanging.cells_with_hanging,
+            "faces_replaced": rep.faces_replaced,
+            "volumes_replaced": rep.volumes_replaced,
+            "unmatched_faces": rep.unmatched_faces,
+            "unmatched_volumes": rep.unmatched_volumes,
+            "uncovered": super::patterns::uncovered_json(&rep.uncovered),
+            "cell_types": {"hex": k.hex, "tet": k.tet, "prism": k.prism, "pyramid": k.pyramid, "other": k.other},
+            "non_conformal_faces": nonconformal,
+            "scaled_jacobian": super::quality::by_kind_json(&quality),
+            "valid": valid,
+            "query_seconds": rep.query_seconds,
+            "replace_seconds": rep.replace_seconds,
+            "seconds": r.seconds,
+        });
+        println!("{}", serde_json::to_string_pretty(&j)?);
+    } else {
+        println!(
+            "{} f- and {} v-patterns; {} hanging vertices in {} cells; {} faces and {} volumes replaced ({} / {} unmatched)",
+            set.count(PatternKind::Face),
+            set.count(PatternKind::Volume),
+            r.hanging.hanging_vertices,
+            r.hanging.cells_with_hanging,
+            rep.faces_replaced,
+            rep.volumes_replaced,
+            rep.unmatched_faces,
+            rep.unmatched_volumes
+        );
+        println!(
+            "{} hex, {} tet, {} prism, {} pyramid, {} other; non-conformal faces: {nonconformal}; valid: {valid}",
+            k.hex, k.tet, k.prism, k.pyramid, k.other
+        );
+        print!("{}", super::quality::by_kind_text(&quality));
+        println!(
+            "query {:.3} s, replace {:.3} s, total {:.3} s; wrote {}",
+            rep.query_seconds,
+            rep.replace_seconds,
+            r.seconds,
+            a.output.display()
+        );
+    }
+    Ok(if valid && nonconformal == 0 && rep.unmatched_volumes == 0 { ExitCode::SUCCESS } else { ExitCode::from(1) })
+}

@@ -1,0 +1,52 @@
+//! Volumes that are axis-aligned boxes (octree cells, possibly with vertices inserted
+//! on their edges and faces): their box, their octree cell, and the papers' corner
+//! flags computed from the box (2022 §7: a dart is flagged when it starts at an
+//! original corner of its cell and runs along one of the cell's edges).
+
+use super::octree::{OctCell, RootBox};
+use crate::cmap::{CMap3, Dart, Mark, Orbit, OrbitWalker};
+use crate::geom::Aabb;
+
+/// Tolerance for "on the corner lattice", relative to the cell size.
+pub(crate) const LATTICE_TOL: f64 = 1e-6;
+
+/// The box of the volume of `d`.
+pub(crate) fn volume_box(map: &CMap3, d: Dart, w: &mut OrbitWalker) -> Aabb {
+    Aabb::of(w.collect(map, d, Orbit::Volume).iter().map(|&x| map.point(x)))
+}
+
+fn on_side(b: &Aabb, k: usize, x: f64) -> bool {
+    let tol = LATTICE_TOL * b.extent()[0];
+    (x - b.lo[k]).abs() <= tol || (x - b.hi[k]).abs() <= tol
+}
+
+/// Whether `p` is a corner of box `b`.
+pub(crate) fn is_corner(b: &Aabb, p: [f64; 3]) -> bool {
+    (0..3).all(|k| on_side(b, k, p[k]))
+}
+
+/// The octree cell a box is.
+pub(crate) fn cell_of(root: RootBox, b: &Aabb) -> OctCell {
+    let level = root.level_of(b.extent()[0]);
+    let s = root.size / f64::from(1u32 << level);
+    OctCell { level, ijk: [0, 1, 2].map(|k| ((b.lo[k] - root.lo[k]) / s).round().max(0.0) as u32) }
+}
+
+/// The octree cells of the map's volumes.
+pub(crate) fn map_cells(map: &CMap3, root: RootBox) -> Vec<OctCell> {
+    let mut w = OrbitWalker::new();
+    map.cells(Orbit::Volume).map(|d| cell_of(root, &volume_box(map, d, &mut w))).collect()
+}
+
+/// Flags with `mark` the darts of the volume of `d` (whose box is `b`) that start at a
+/// corner of the box and run along a box edge (their end shares two coordinates).
+pub(crate) fn flag_box_corners(map: &mut CMap3, mark: Mark, d: Dart, b: &Aabb, w: &mut OrbitWalker) {
+    for &x in w.collect(map, d, Orbit::Volume) {
+        let (p, q) = (map.point(x), map.point(map.next(x)));
+        let tol = LATTICE_TOL * b.extent()[0];
+        let along_edge = (0..3).filter(|&k| (p[k] - q[k]).abs() <= tol).count() == 2;
+        if along_edge && is_corner(b, p) {
+            map.mark(x, mark);
+        }
+    }
+}

@@ -1,0 +1,68 @@
+//! Conformal transitions of a 2:1 octree hexahedral mesh (2022 Algorithm 7, §7.3):
+//! hanging vertices inserted into the coarse cells' faces, faces with hanging vertices
+//! query-replaced by face transitions, then the cells by volume transitions, giving
+//! hexahedra, prisms, pyramids and tetrahedra with no hanging vertex.
+
+use std::time::Instant;
+
+use super::box_cells::{flag_box_corners, volume_box};
+use super::hanging::{HangingError, HangingReport, insert_hanging_vertices};
+use crate::build::{BuildError, BuildOptions, ExtractedKinds, IndexedMesh, build_map, count_cell_kinds};
+use crate::cmap::{CMap3, Dart, MapError, Orbit, OrbitWalker};
+use crate::pattern::PatternSet;
+use crate::replace::{ReplaceReport, replace_cells};
+use crate::signature::Flags;
+
+/// Why the conformal pipeline stopped.
+#[derive(Debug, thiserror::Error)]
+pub enum ConformalError {
+    #[error(transparent)]
+    Hanging(#[from] HangingError),
+    #[error("the mesh with its hanging vertices does not build: {0}")]
+    Build(#[from] BuildError),
+    #[error(transparent)]
+    Map(#[from] MapError),
+}
+
+/// What [`conformal`] did.
+#[derive(Clone, Debug, Default)]
+pub struct ConformalReport {
+    pub hanging: HangingReport,
+    pub replace: ReplaceReport,
+    pub kinds: ExtractedKinds,
+    pub seconds: f64,
+}
+
+/// Darts per volume of a plain hexahedron (6 quadrilaterals).
+const PLAIN_HEX_DARTS: usize = 24;
+
+/// Runs Algorithm 7 on a hexahedral mesh with hanging vertices, with the face and
+/// volume transitions of `set` (the papers' square-5 + 325 patterns, or qmesh's
+/// generated `transitions`). Faces and cells without hanging vertices are left alone.
+///
+/// # Errors
+/// A mesh that is not 2:1 balanced, does not build, or exhausts the map's marks.
+pub fn conformal(
+    mesh: &IndexedMesh,
+    set: &PatternSet,
+    use_signatures: bool,
+) -> Result<(CMap3, ConformalReport), ConformalError> {
+    let t = Instant::now();
+    let (cells, hanging) = insert_hanging_vertices(mesh)?;
+    let (mut map, _) = build_map(cells, &BuildOptions { fix_orientation: true })?;
+    let flag = map.reserve_mark()?;
+    let mut w = OrbitWalker::new();
+    let mut volumes = Vec::new();
+    for d in map.cells(Orbit::Volume).collect::<Vec<Dart>>() {
+        let b = volume_box(&map, d, &mut w);
+        flag_box_corners(&mut map, flag, d, &b, &mut w);
+        if w.collect(&map, d, Orbit::Volume).len() != PLAIN_HEX_DARTS {
+            volumes.push(d);
+        }
+    }
+    let faces: Vec<Dart> = map.cells(Orbit::Face).filter(|&d| map.face_degree(d) > 4).collect();
+    let replace = replace_cells(&mut map, set, Flags::Mark(flag), &faces, &volumes, use_signatures);
+    map.free_mark(flag);
+    let kinds = count_cell_kinds(&map);
+    Ok((map, ConformalReport { hanging, replace, kinds, seconds: t.elapsed().as_secs_f64() }))
+}

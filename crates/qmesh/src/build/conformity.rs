@@ -1,0 +1,131 @@
+//! Conformity (2022 §7.3): a mesh is conformal when two cells meet in a whole shared
+//! face, edge or vertex, i.e. no vertex lies on a face, or an edge, it is not a vertex
+//! of ("hanging" vertices, T-junctions).
+
+use rayon::prelude::*;
+use rustc_hash::FxHashMap;
+
+use crate::cmap::{CMap3, Dart, Orbit};
+use crate::geom::{Aabb, cross, dot, sub};
+
+/// Vertex ids bucketed on a uniform grid.
+struct Grid {
+    lo: [f64; 3],
+    cell: f64,
+    buckets: FxHashMap<[i64; 3], Vec<u32>>,
+}
+
+impl Grid {
+    fn key(&self, p: [f64; 3]) -> [i64; 3] {
+        [0, 1, 2].map(|k| ((p[k] - self.lo[k]) / self.cell).floor() as i64)
+    }
+}
+
+/// Number of faces of the map (each counted once, whichever side) that some vertex
+/// touches at a position other than their corners: inside the face or on one of its edges. 0 for a conformal
+/// mesh; each coarse face next to finer cells counts in a hanging-node mesh.
+pub fn non_conformal_faces(map: &CMap3) -> usize {
+    let mut used = vec![false; map.nb_vertex_ids()];
+    map.darts().for_each(|d| used[map.vertex_of(d) as usize] = true);
+    let ids: Vec<u32> = (0..used.len() as u32).filter(|&v| used[v as usize]).collect();
+    if ids.is_empty() {
+        return 0;
+    }
+    let b = Aabb::of(ids.iter().map(|&v| map.position(v)));
+    let e = b.extent();
+    let diag = dot(e, e).sqrt().max(f64::MIN_POSITIVE);
+    let cell = diag / (ids.len() as f64).cbrt().max(1.0);
+    let mut grid = Grid { lo: b.lo, cell, buckets: FxHashMap::default() };
+    for &v in &ids {
+        let k = grid.key(map.position(v));
+        grid.buckets.entry(k).or_default().push(v);
+    }
+    let faces: Vec<Dart> = map.cells(Orbit::Face).collect();
+    faces.par_iter().filter(|&&d| face_is_touched(map, &grid, d)).count()
+}
+
+fn face_is_touched(map: &CMap3, grid: &Grid, d: Dart) -> bool {
+    let mut verts = vec![map.vertex_of(d)];
+    let mut x = map.next(d);
+    while x != d {
+        verts.push(map.vertex_of(x));
+        x = map.next(x);
+    }
+    let pts: Vec<[f64; 3]> = verts.iter().map(|&v| map.position(v)).collect();
+    let fb = Aabb::of(pts.iter().copied());
+    let fe = fb.extent();
+    let tol = 1e-7 * dot(fe, fe).sqrt();
+    let (klo, khi) = (grid.key(fb.lo.map(|c| c - tol)), grid.key(fb.hi.map(|c| c + tol)));
+    for i in klo[0]..=khi[0] {
+        for j in klo[1]..=khi[1] {
+            for k in klo[2]..=khi[2] {
+                let Some(bucket) = grid.buckets.get(&[i, j, k]) else { continue };
+                for &w in bucket {
+                    let q = map.position(w);
+                    let own = verts.contains(&w) || pts.iter().any(|&p| dot(sub(p, q), sub(p, q)).sqrt() <= tol);
+                    if !own && on_polygon(&pts, q, tol) {
+                        return true;
+                    }
+                }
+            }
+        }
+    }
+    false
+}
+
+/// Whether `q` lies on the (planar) polygon `p`, boundary included, within `tol`.
+fn on_polygon(p: &[[f64; 3]], q: [f64; 3], tol: f64) -> bool {
+    let n = p.iter().zip(p.iter().cycle().skip(1)).fold([0.0; 3], |n, (a, b)| {
+        let c = cross(*a, *b);
+        [n[0] + c[0], n[1] + c[1], n[2] + c[2]]
+    });
+    let ln = dot(n, n).sqrt();
+    if ln == 0.0 || (dot(n, sub(q, p[0])) / ln).abs() > tol {
+        return false;
+    }
+    // On an edge?
+    for (a, b) in p.iter().zip(p.iter().cycle().skip(1)) {
+        let (ab, aq) = (sub(*b, *a), sub(q, *a));
+        let t = (dot(aq, ab) / dot(ab, ab)).clamp(0.0, 1.0);
+        let r = sub(aq, ab.map(|c| c * t));
+        if dot(r, r).sqrt() <= tol {
+            return true;
+        }
+    }
+    // Inside: crossing test in the plane that drops the normal's largest axis.
+    let drop = (0..3).max_by(|&i, &j| n[i].abs().total_cmp(&n[j].abs())).unwrap_or(2);
+    let (u, v) = ((drop + 1) % 3, (drop + 2) % 3);
+    let mut inside = false;
+    for (a, b) in p.iter().zip(p.iter().cycle().skip(1)) {
+        if (a[v] > q[v]) != (b[v] > q[v]) {
+            let x = a[u] + (q[v] - a[v]) / (b[v] - a[v]) * (b[u] - a[u]);
+            if q[u] < x {
+                inside = !inside;
+            }
+        }
+    }
+    inside
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::build::{BuildOptions, CellKind, build_map};
+
+    #[test]
+    fn hanging_vertex_is_found() {
+        // Two unit cubes side by side: conformal.
+        let mut m = crate::generate::hex_grid(2, 1, 1);
+        let (map, _) = build_map(m.clone(), &BuildOptions::default()).expect("grid");
+        assert_eq!(non_conformal_faces(&map), 0);
+        // A cell on top of the second half of the first cube: its corners at x = 0.5
+        // hang on the first cube's top edges, seen by its top, front and back faces.
+        let id = |i: u32, j: u32, k: u32| i + 3 * (j + 2 * k);
+        let base = m.points.len() as u32;
+        m.points.extend([[0.5, 0., 1.], [0.5, 1., 1.], [0.5, 0., 2.], [1., 0., 2.], [1., 1., 2.], [0.5, 1., 2.]]);
+        let nodes = [base, id(1, 0, 1), id(1, 1, 1), base + 1, base + 2, base + 3, base + 4, base + 5];
+        m.push_cell(CellKind::Hex, &nodes, None);
+        let (map, _) = build_map(m, &BuildOptions::default()).expect("three cells");
+        assert_eq!(non_conformal_faces(&map), 3);
+    }
+}

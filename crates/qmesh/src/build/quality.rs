@@ -1,0 +1,74 @@
+//! Scaled Jacobian per cell kind of an indexed mesh, summarised the way Verdict and
+//! ParaView users read it: min, mean, max, a 10-bin histogram over [−1, 1], the
+//! counts ≤ 0 and < 0.5.
+
+use super::indexed::{CellKind, IndexedMesh};
+use crate::geom::{hex_scaled_jacobian, prism_scaled_jacobian, pyramid_scaled_jacobian, tet_scaled_jacobian};
+
+/// Scaled Jacobian of cell `i`, or None for a polyhedron.
+pub fn cell_scaled_jacobian(mesh: &IndexedMesh, i: usize) -> Option<f64> {
+    let (kind, nodes) = mesh.cell(i);
+    let p = |k: usize| mesh.points[nodes[k] as usize];
+    Some(match kind {
+        CellKind::Hex => hex_scaled_jacobian(&std::array::from_fn(p)),
+        CellKind::Tet => tet_scaled_jacobian(&std::array::from_fn(p)),
+        CellKind::Prism => prism_scaled_jacobian(&std::array::from_fn(p)),
+        CellKind::Pyramid => pyramid_scaled_jacobian(&std::array::from_fn(p)),
+        CellKind::Polyhedron => return None,
+    })
+}
+
+/// Summary of one measure over the cells of one kind.
+#[derive(Clone, Debug, PartialEq)]
+pub struct QualitySummary {
+    pub count: usize,
+    pub min: f64,
+    pub mean: f64,
+    pub max: f64,
+    /// 10 bins of width 0.2 from −1 to 1.
+    pub histogram: [usize; 10],
+    pub at_most_zero: usize,
+    pub below_half: usize,
+}
+
+impl QualitySummary {
+    pub fn of(values: &[f64]) -> Option<QualitySummary> {
+        if values.is_empty() {
+            return None;
+        }
+        let mut histogram = [0usize; 10];
+        for &v in values {
+            histogram[(((v + 1.0) / 0.2).floor() as i64).clamp(0, 9) as usize] += 1;
+        }
+        Some(QualitySummary {
+            count: values.len(),
+            min: values.iter().copied().fold(f64::INFINITY, f64::min),
+            mean: values.iter().sum::<f64>() / values.len() as f64,
+            max: values.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+            histogram,
+            at_most_zero: values.iter().filter(|&&v| v <= 0.0).count(),
+            below_half: values.iter().filter(|&&v| v < 0.5).count(),
+        })
+    }
+}
+
+/// Scaled Jacobian summaries per kind (tet, pyramid, prism, hex), plus every cell's value
+/// (NaN for polyhedra), in cell order.
+#[derive(Clone, Debug, Default)]
+pub struct QualityByKind {
+    pub per_cell: Vec<f64>,
+    pub kinds: Vec<(CellKind, QualitySummary)>,
+}
+
+/// The scaled Jacobian of every cell and its summary per kind.
+pub fn quality_by_kind(mesh: &IndexedMesh) -> QualityByKind {
+    let per_cell: Vec<f64> = (0..mesh.nb_cells()).map(|i| cell_scaled_jacobian(mesh, i).unwrap_or(f64::NAN)).collect();
+    let kinds = [CellKind::Tet, CellKind::Pyramid, CellKind::Prism, CellKind::Hex]
+        .into_iter()
+        .filter_map(|k| {
+            let v: Vec<f64> = (0..mesh.nb_cells()).filter(|&i| mesh.kinds[i] == k).map(|i| per_cell[i]).collect();
+            QualitySummary::of(&v).map(|s| (k, s))
+        })
+        .collect();
+    QualityByKind { per_cell, kinds }
+}
