@@ -28,6 +28,9 @@ pub fn run(a: Args) -> Result<ExitCode> {
     let (c, violations) = (census.counts, census.violations);
     let kinds = count_kinds_of(map, &census.volume_reps);
     let surface = map.dimension() == 2;
+    let t = std::time::Instant::now();
+    let non_conformal = if surface { 0 } else { qmesh::build::non_conformal_faces(map) };
+    let conformity_seconds = t.elapsed().as_secs_f64();
     let mut j = json!({
         "file": a.input.input.display().to_string(),
         "dimension": map.dimension(),
@@ -40,6 +43,8 @@ pub fn run(a: Args) -> Result<ExitCode> {
         "euler_characteristic": c.euler_characteristic(map.dimension()),
         "components": c.components,
         "cell_types": {"tet": kinds.tet, "pyramid": kinds.pyramid, "prism": kinds.prism, "hex": kinds.hex, "other": kinds.other},
+        "non_conformal_faces": non_conformal,
+        "conformity_seconds": conformity_seconds,
         "inverted_cells": loaded.report.inverted_cells,
         "flipped_cells": loaded.report.flipped_cells,
         "degenerate_cells": loaded.report.degenerate_cells,
@@ -79,7 +84,7 @@ pub fn run(a: Args) -> Result<ExitCode> {
     if surface {
         println!("  boundary edges {}", map.boundary_edges());
     } else {
-        println!("  boundary faces {}", c.boundary_faces);
+        println!("  boundary faces {}  non-conformal faces {non_conformal}", c.boundary_faces);
         println!(
             "  cells: {} hex, {} tet, {} prism, {} pyramid, {} other",
             kinds.hex, kinds.tet, kinds.prism, kinds.pyramid, kinds.other

@@ -5,7 +5,7 @@
 use rayon::prelude::*;
 use rustc_hash::FxHashMap;
 
-use crate::cmap::{CMap3, Dart, Orbit};
+use crate::cmap::{CMap3, Dart};
 use crate::geom::{Aabb, cross, dot, sub};
 
 /// Vertex ids bucketed on a uniform grid.
@@ -21,27 +21,47 @@ impl Grid {
     }
 }
 
-/// Number of faces of the map (each counted once, whichever side) that some vertex
-/// touches at a position other than their corners: inside the face or on one of its edges. 0 for a conformal
-/// mesh; each coarse face next to finer cells counts in a hanging-node mesh.
+/// Number of faces not shared by two cells (3-free) that some vertex touches at a
+/// position other than their corners, inside the face or on one of its edges: 0 for a
+/// conformal mesh; each coarse face next to finer cells counts in a hanging-node mesh.
+/// Only 3-free faces are examined: cells meeting in part of a face, or at a vertex in
+/// the middle of an edge, always leave unshared faces inside the mesh.
 pub fn non_conformal_faces(map: &CMap3) -> usize {
     let mut used = vec![false; map.nb_vertex_ids()];
-    map.darts().for_each(|d| used[map.vertex_of(d) as usize] = true);
+    // A vertex touching an unshared face lies on unshared faces itself (those of the
+    // finer cells on the other side), so only their vertices are bucketed.
+    map.darts().filter(|&d| map.is_free(d, 3)).for_each(|d| used[map.vertex_of(d) as usize] = true);
     let ids: Vec<u32> = (0..used.len() as u32).filter(|&v| used[v as usize]).collect();
     if ids.is_empty() {
         return 0;
     }
     let b = Aabb::of(ids.iter().map(|&v| map.position(v)));
-    let e = b.extent();
-    let diag = dot(e, e).sqrt().max(f64::MIN_POSITIVE);
-    let cell = diag / (ids.len() as f64).cbrt().max(1.0);
+    // One dart per unshared face: the smallest of its cycle.
+    let faces: Vec<Dart> = map.darts().filter(|&d| map.is_free(d, 3) && is_smallest_of_face(map, d)).collect();
+    // Buckets about the size of a face (the mean length of the first edges).
+    let mean_edge = faces
+        .iter()
+        .map(|&d| dot(sub(map.point(map.next(d)), map.point(d)), sub(map.point(map.next(d)), map.point(d))).sqrt())
+        .sum::<f64>()
+        / faces.len().max(1) as f64;
+    let cell = mean_edge.max(f64::MIN_POSITIVE);
     let mut grid = Grid { lo: b.lo, cell, buckets: FxHashMap::default() };
     for &v in &ids {
         let k = grid.key(map.position(v));
         grid.buckets.entry(k).or_default().push(v);
     }
-    let faces: Vec<Dart> = map.cells(Orbit::Face).collect();
     faces.par_iter().filter(|&&d| face_is_touched(map, &grid, d)).count()
+}
+
+fn is_smallest_of_face(map: &CMap3, d: Dart) -> bool {
+    let mut x = map.next(d);
+    while x != d {
+        if x < d {
+            return false;
+        }
+        x = map.next(x);
+    }
+    true
 }
 
 fn face_is_touched(map: &CMap3, grid: &Grid, d: Dart) -> bool {
