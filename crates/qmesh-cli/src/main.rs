@@ -36,6 +36,8 @@ enum Command {
     Subdivide(cmd::subdivide::Args),
     /// Conformal transitions of a 2:1 octree hex mesh (2022 Algorithm 7).
     Conformal(cmd::conformal::Args),
+    /// Tetrahedra to hexahedra: each tetrahedron into 4 hexahedra (2022 §7.4).
+    Tet2hex(cmd::tet2hex::Args),
     /// A short tour on built-in inputs: generate, inspect, split edges, write files.
     Demo(cmd::demo::Args),
 }
@@ -53,6 +55,7 @@ fn main() -> ExitCode {
         Command::Quality(a) => cmd::quality::run(a),
         Command::Subdivide(a) => cmd::subdivide::run(a),
         Command::Conformal(a) => cmd::conformal::run(a),
+        Command::Tet2hex(a) => cmd::tet2hex::run(a),
     };
     match result {
         Ok(code) => code,

@@ -9,6 +9,7 @@ pub mod patterns;
 pub mod quality;
 pub mod replace;
 pub mod subdivide;
+pub mod tet2hex;
 pub mod validate;
 
 use std::path::PathBuf;

@@ -7,6 +7,7 @@ mod generated_patterns;
 mod hanging;
 mod octree;
 mod subdivide;
+mod tet2hex;
 mod transitions;
 
 pub use conformal::{ConformalError, ConformalReport, conformal};
@@ -14,4 +15,5 @@ pub use generated_patterns::{GeneratedKind, generated_pattern_meshes, generated_
 pub use hanging::{HangingError, HangingReport, insert_hanging_vertices};
 pub use octree::{OctCell, Octree, RootBox};
 pub use subdivide::{SubdivideOptions, SubdivideReport, Subdivision, subdivide};
+pub use tet2hex::tet_to_hex;
 pub use transitions::{Configuration, configuration_cell, transition_configurations};
