@@ -3,8 +3,11 @@
 
 mod box_cells;
 mod conformal;
+mod cube;
 mod generated_patterns;
 mod hanging;
+mod marching_cubes;
+mod mc_patterns;
 mod octree;
 mod subdivide;
 mod tet2hex;
@@ -13,6 +16,8 @@ mod transitions;
 pub use conformal::{ConformalError, ConformalReport, conformal};
 pub use generated_patterns::{GeneratedKind, generated_pattern_meshes, generated_pattern_set};
 pub use hanging::{HangingError, HangingReport, insert_hanging_vertices};
+pub use marching_cubes::{McReport, marching_cubes, marching_cubes_field, triangulate};
+pub use mc_patterns::{mc_face_patterns, mc_pattern_set, mc_volume_patterns};
 pub use octree::{OctCell, Octree, RootBox};
 pub use subdivide::{SubdivideOptions, SubdivideReport, Subdivision, subdivide};
 pub use tet2hex::tet_to_hex;

@@ -1,0 +1,185 @@
+//! Marching cubes by query-replace (2022 Algorithm 6, §7.2): split the edges that cross
+//! the surface, query-replace the faces then the cubes with the generated patterns, and
+//! keep the faces made only of new vertices — the surface.
+
+use std::time::Instant;
+
+use super::mc_patterns::mc_pattern_set;
+use crate::build::IndexedMesh;
+use crate::cmap::{CMap3, Dart, MapError, Orbit, OrbitWalker};
+use crate::pattern::PatternKind;
+use crate::replace::replace_cells;
+use crate::signature::Flags;
+
+/// What [`marching_cubes`] did.
+#[derive(Clone, Debug, Default)]
+pub struct McReport {
+    pub f_patterns: usize,
+    pub v_patterns: usize,
+    pub edges_split: usize,
+    pub faces_replaced: usize,
+    pub volumes_replaced: usize,
+    pub unmatched_faces: usize,
+    pub unmatched_volumes: usize,
+    pub polygons: usize,
+    pub seconds: f64,
+}
+
+/// Extracts the surface between the vertices with `inside[v]` and the others (vertex
+/// ids of `map`); `crossing(a, b)` places the new vertex on an edge from inside vertex
+/// `a` to outside vertex `b`. The map keeps the replaced cells; the surface's polygons
+/// are returned oriented with normals pointing outside.
+///
+/// # Errors
+/// Only if the map has no free mark.
+pub fn marching_cubes(
+    map: &mut CMap3,
+    inside: &[bool],
+    crossing: &dyn Fn(u32, u32) -> [f64; 3],
+) -> Result<(IndexedMesh, McReport), MapError> {
+    let t = Instant::now();
+    let set = mc_pattern_set();
+    let mut r = McReport {
+        f_patterns: set.count(PatternKind::Face),
+        v_patterns: set.count(PatternKind::Volume),
+        ..Default::default()
+    };
+    let original = map.nb_vertex_ids();
+    let is_in = |v: u32| inside.get(v as usize).copied().unwrap_or(false);
+    let flag = map.reserve_mark()?;
+    for d in map.darts().collect::<Vec<_>>() {
+        if is_in(map.vertex_of(d)) {
+            map.mark(d, flag);
+        }
+    }
+    // Crossing edges: one inside and one outside end.
+    let edges: Vec<Dart> =
+        map.cells(Orbit::Edge).filter(|&d| is_in(map.vertex_of(d)) != is_in(map.vertex_of(map.next(d)))).collect();
+    for &d in &edges {
+        let (a, b) = (map.vertex_of(d), map.vertex_of(map.next(d)));
+        let p = if is_in(a) { crossing(a, b) } else { crossing(b, a) };
+        map.insert_vertex_in_edge(d, p);
+    }
+    r.edges_split = edges.len();
+    let is_new = |v: u32| v as usize >= original;
+    let mut w = OrbitWalker::new();
+    let faces: Vec<Dart> = map
+        .cells(Orbit::Face)
+        .filter(|&d| w.collect(map, d, Orbit::HalfFace).iter().any(|&x| is_new(map.vertex_of(x))))
+        .collect();
+    let volumes: Vec<Dart> = map
+        .cells(Orbit::Volume)
+        .filter(|&d| w.collect(map, d, Orbit::Volume).iter().any(|&x| is_new(map.vertex_of(x))))
+        .collect();
+    let rep = replace_cells(map, &set, Flags::Mark(flag), &faces, &volumes, true);
+    map.free_mark(flag);
+    r.faces_replaced = rep.faces_replaced;
+    r.volumes_replaced = rep.volumes_replaced;
+    r.unmatched_faces = rep.unmatched_faces;
+    r.unmatched_volumes = rep.unmatched_volumes;
+    let surface = surface_polygons(map, original, inside);
+    r.polygons = surface.nb_polygons();
+    r.seconds = t.elapsed().as_secs_f64();
+    Ok((surface, r))
+}
+
+/// The faces whose vertices are all new, each taken once from its outside volume (a
+/// half-face's β1 order turns inward, toward its volume: the outside volume's copy
+/// points out of the object).
+fn surface_polygons(map: &CMap3, original: usize, inside: &[bool]) -> IndexedMesh {
+    let mut out = IndexedMesh::new();
+    let mut id = vec![u32::MAX; map.nb_vertex_ids()];
+    let mut w = OrbitWalker::new();
+    for d in map.cells(Orbit::HalfFace) {
+        let cycle: Vec<Dart> = w.collect(map, d, Orbit::HalfFace).to_vec();
+        if cycle.iter().any(|&x| (map.vertex_of(x) as usize) < original) {
+            continue;
+        }
+        let outside_volume = w.collect(map, d, Orbit::Volume).iter().any(|&x| {
+            let v = map.vertex_of(x) as usize;
+            v < original && !inside.get(v).copied().unwrap_or(false)
+        });
+        if !outside_volume {
+            continue;
+        }
+        let poly: Vec<u32> = cycle
+            .iter()
+            .map(|&x| {
+                let v = map.vertex_of(x) as usize;
+                if id[v] == u32::MAX {
+                    id[v] = out.points.len() as u32;
+                    out.points.push(map.position(v as u32));
+                }
+                id[v]
+            })
+            .collect();
+        out.push_polygon(&poly);
+    }
+    out
+}
+
+/// Splits every polygon into a fan of triangles, from the first vertex whose
+/// diagonals are not already edges of the surface (two polygons sharing two vertices
+/// would otherwise get the same diagonal, a non-manifold edge).
+pub fn triangulate(mesh: &IndexedMesh) -> IndexedMesh {
+    let key = |a: u32, b: u32| (a.min(b), a.max(b));
+    let mut edges: rustc_hash::FxHashSet<(u32, u32)> = rustc_hash::FxHashSet::default();
+    for i in 0..mesh.nb_polygons() {
+        let p = mesh.polygon(i);
+        for k in 0..p.len() {
+            edges.insert(key(p[k], p[(k + 1) % p.len()]));
+        }
+    }
+    let mut out = IndexedMesh { points: mesh.points.clone(), ..IndexedMesh::new() };
+    for i in 0..mesh.nb_polygons() {
+        let p = mesh.polygon(i);
+        let n = p.len();
+        let diagonals = |apex: usize| (2..n.saturating_sub(1)).map(move |j| (p[apex], p[(apex + j) % n]));
+        let apex = (0..n).find(|&a| diagonals(a).all(|(u, v)| !edges.contains(&key(u, v)))).unwrap_or(0);
+        for (u, v) in diagonals(apex) {
+            edges.insert(key(u, v));
+        }
+        for k in 1..n.saturating_sub(1) {
+            out.push_polygon(&[p[apex], p[(apex + k) % n], p[(apex + k + 1) % n]]);
+        }
+    }
+    out
+}
+
+/// Marching cubes of a scalar field sampled on a grid of `dims` points (unit spacing,
+/// value of point (i, j, k) at `(i·ny + j)·nz + k`): inside where value ≤ `iso`, new
+/// vertices at the linear interpolation of the crossing (kept off the grid points).
+///
+/// # Errors
+/// A value count that does not match `dims`, or dims below 2.
+pub fn marching_cubes_field(values: &[f32], dims: [usize; 3], iso: f64) -> Result<(IndexedMesh, McReport), String> {
+    let [nx, ny, nz] = dims;
+    if dims.iter().any(|&n| n < 2) {
+        return Err(format!("grid dimensions {nx}×{ny}×{nz}: at least 2 points per axis"));
+    }
+    if values.len() != nx * ny * nz {
+        return Err(format!("{} values for a {nx}×{ny}×{nz} grid ({} expected)", values.len(), nx * ny * nz));
+    }
+    let grid = crate::generate::hex_grid(nx - 1, ny - 1, nz - 1);
+    // hex_grid numbers point (i, j, k) as i + nx·(j + ny·k).
+    let value = |v: u32| {
+        let v = v as usize;
+        let (i, j, k) = (v % nx, v / nx % ny, v / (nx * ny));
+        f64::from(values[(i * ny + j) * nz + k])
+    };
+    let inside: Vec<bool> = (0..grid.points.len() as u32).map(|v| value(v) - iso <= 0.0).collect();
+    let (mut map, _) =
+        crate::build::build_map(grid, &crate::build::BuildOptions::default()).map_err(|e| e.to_string())?;
+    let crossing = |a: u32, b: u32| {
+        let (va, vb) = (value(a), value(b));
+        let t = if vb != va { ((iso - va) / (vb - va)).clamp(1e-6, 1.0 - 1e-6) } else { 0.5 };
+        let (p, q) = (map_position(a, nx, ny), map_position(b, nx, ny));
+        [0, 1, 2].map(|k| p[k] + t * (q[k] - p[k]))
+    };
+    marching_cubes(&mut map, &inside, &crossing).map_err(|e| e.to_string())
+}
+
+fn map_position(v: u32, nx: usize, ny: usize) -> [f64; 3] {
+    let v = v as usize;
+    [(v % nx) as f64, (v / nx % ny) as f64, (v / (nx * ny)) as f64]
+}
