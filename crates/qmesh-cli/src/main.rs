@@ -38,6 +38,8 @@ enum Command {
     Conformal(cmd::conformal::Args),
     /// Tetrahedra to hexahedra: each tetrahedron into 4 hexahedra (2022 §7.4).
     Tet2hex(cmd::tet2hex::Args),
+    /// Marching cubes by query-replace (2022 Algorithm 6), from a surface or a field.
+    MarchingCubes(cmd::marching_cubes::Args),
     /// A short tour on built-in inputs: generate, inspect, split edges, write files.
     Demo(cmd::demo::Args),
 }
@@ -56,6 +58,7 @@ fn main() -> ExitCode {
         Command::Subdivide(a) => cmd::subdivide::run(a),
         Command::Conformal(a) => cmd::conformal::run(a),
         Command::Tet2hex(a) => cmd::tet2hex::run(a),
+        Command::MarchingCubes(a) => cmd::marching_cubes::run(a),
     };
     match result {
         Ok(code) => code,

@@ -5,6 +5,7 @@ pub mod convert;
 pub mod demo;
 pub mod generate;
 pub mod info;
+pub mod marching_cubes;
 pub mod patterns;
 pub mod quality;
 pub mod replace;

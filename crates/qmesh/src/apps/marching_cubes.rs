@@ -183,3 +183,29 @@ fn map_position(v: u32, nx: usize, ny: usize) -> [f64; 3] {
     let v = v as usize;
     [(v % nx) as f64, (v / nx % ny) as f64, (v / (nx * ny)) as f64]
 }
+
+/// Marching cubes of a surface (2022 §7.2 on the hexahedra of §7.1): the 2:1 octree of
+/// `levels` around it, each vertex inside or outside by winding number, crossing edges
+/// split at their middle. Returns the surface, the report and the number of hexahedra.
+///
+/// # Errors
+/// An octree that does not build (cannot happen for a valid surface).
+pub fn marching_cubes_surface(
+    surface: &crate::geom::TriangleBvh,
+    levels: u8,
+    margin: f64,
+) -> Result<(IndexedMesh, McReport, usize), String> {
+    let tree = super::subdivide::octree_around(surface, levels, margin);
+    let hexes = tree.to_mesh();
+    let inside = tree.point_sides(surface);
+    let (cells, _) = super::hanging::insert_hanging_vertices(&hexes).map_err(|e| e.to_string())?;
+    let (mut map, _) =
+        crate::build::build_map(cells, &crate::build::BuildOptions::default()).map_err(|e| e.to_string())?;
+    let points = hexes.points;
+    let crossing = |a: u32, b: u32| {
+        let (p, q) = (points[a as usize], points[b as usize]);
+        [0, 1, 2].map(|k| 0.5 * (p[k] + q[k]))
+    };
+    let (s, r) = marching_cubes(&mut map, &inside, &crossing).map_err(|e| e.to_string())?;
+    Ok((s, r, tree.leaves.len()))
+}

@@ -197,32 +197,59 @@ impl Octree {
         v
     }
 
+    /// The leaves in output order, the finest-lattice position of each point, and each
+    /// leaf's 8 points (VTK hexahedron order).
+    fn numbering(&self) -> (Vec<OctCell>, Vec<[u32; 3]>, Vec<[u32; 8]>) {
+        let leaves = self.sorted_leaves();
+        let fine = leaves.iter().map(|c| c.level).max().unwrap_or(0);
+        let mut ids: FxHashMap<[u32; 3], u32> = FxHashMap::default();
+        let mut lattice = Vec::new();
+        let hexes = leaves
+            .iter()
+            .map(|c| {
+                let s = 1u32 << (fine - c.level);
+                std::array::from_fn(|i| {
+                    let b = crate::build::HEX_CORNER_BITS[i];
+                    let q = [0, 1, 2].map(|k| (c.ijk[k] + (b >> k & 1)) * s);
+                    *ids.entry(q).or_insert_with(|| {
+                        lattice.push(q);
+                        (lattice.len() - 1) as u32
+                    })
+                })
+            })
+            .collect();
+        (leaves, lattice, hexes)
+    }
+
     /// Hexahedra of the leaves (VTK order) with their `level` array. Points are shared
     /// through their position on the finest lattice.
     pub fn to_mesh(&self) -> IndexedMesh {
-        let leaves = self.sorted_leaves();
+        let (leaves, lattice, hexes) = self.numbering();
         let fine = leaves.iter().map(|c| c.level).max().unwrap_or(0);
-        let mut mesh = IndexedMesh::new();
-        let mut ids: FxHashMap<[u32; 3], u32> = FxHashMap::default();
         let step = self.root.size / f64::from(1u32 << fine);
-        for c in &leaves {
-            let s = 1u32 << (fine - c.level);
-            let corner = |i: usize| {
-                let b = crate::build::HEX_CORNER_BITS[i];
-                [0, 1, 2].map(|k| (c.ijk[k] + (b >> k & 1)) * s)
-            };
-            let mut nodes = [0u32; 8];
-            for (i, n) in nodes.iter_mut().enumerate() {
-                let q = corner(i);
-                *n = *ids.entry(q).or_insert_with(|| {
-                    mesh.points.push([0, 1, 2].map(|k| self.root.lo[k] + step * f64::from(q[k])));
-                    (mesh.points.len() - 1) as u32
-                });
-            }
-            mesh.push_cell(CellKind::Hex, &nodes, None);
+        let mut mesh = IndexedMesh::new();
+        mesh.points = lattice.iter().map(|q| [0, 1, 2].map(|k| self.root.lo[k] + step * f64::from(q[k]))).collect();
+        for h in &hexes {
+            mesh.push_cell(CellKind::Hex, h, None);
         }
         mesh.set_cell_array("level", CellValues::Int(leaves.iter().map(|c| i32::from(c.level)).collect()));
         mesh
+    }
+
+    /// Whether each point of [`Octree::to_mesh`] is inside the surface: the side of an
+    /// untouched leaf holding it when there is one (see [`Octree::outside_leaves`]),
+    /// else its winding number.
+    pub fn point_sides(&self, surface: &TriangleBvh) -> Vec<bool> {
+        let (leaves, _, hexes) = self.numbering();
+        let outside: rustc_hash::FxHashSet<OctCell> = self.outside_leaves(surface).into_iter().collect();
+        let touched: Vec<bool> = leaves.par_iter().map(|&c| surface.intersects_box(&self.root.cell_box(c))).collect();
+        let mut side: Vec<Option<bool>> = vec![None; hexes.iter().flatten().max().map_or(0, |&m| m as usize + 1)];
+        for (i, h) in hexes.iter().enumerate().filter(|(i, _)| !touched[*i]) {
+            let inside = !outside.contains(&leaves[i]);
+            h.iter().for_each(|&v| side[v as usize] = Some(inside));
+        }
+        let mesh_points = self.to_mesh().points;
+        side.par_iter().enumerate().map(|(v, s)| s.unwrap_or_else(|| surface.contains(mesh_points[v]))).collect()
     }
 }
 

@@ -100,6 +100,12 @@ pub fn subdivide(
     Ok(Subdivision { mesh, map, report })
 }
 
+/// The octree of [`subdivide`] with `direct` (no map): for pipelines that only need
+/// the cells, such as marching cubes of a surface.
+pub fn octree_around(surface: &TriangleBvh, levels: u8, margin: f64) -> Octree {
+    subdivide_direct(RootBox::around(&surface.bounds(), margin), surface, levels, &|_| {}).0
+}
+
 fn subdivide_direct(
     root: RootBox,
     surface: &TriangleBvh,

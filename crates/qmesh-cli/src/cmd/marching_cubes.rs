@@ -1,0 +1,138 @@
+//! `qmesh marching-cubes (SURFACE --levels L | --field FILE --dims NX,NY,NZ [--iso V])
+//! -o OUT [--triangulate]`: surface extraction by query-replace (2022 Algorithm 6).
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use anyhow::{Context, Result, bail};
+use qmesh::apps::{marching_cubes_field, marching_cubes_surface, triangulate};
+use qmesh::build::build_surface_map;
+use qmesh::geom::TriangleBvh;
+use qmesh::io::{WriteOptions, read_surface, resolve_format, write_indexed};
+use serde_json::json;
+
+use super::parse_format;
+
+#[derive(clap::Args, Debug)]
+pub struct Args {
+    /// Surface whose octree hexahedra are marched (with --levels).
+    #[arg(conflicts_with = "field", required_unless_present = "field")]
+    pub surface: Option<PathBuf>,
+    /// Octree depth for a surface input.
+    #[arg(long, default_value_t = 5)]
+    pub levels: u8,
+    /// Root cube side beyond the surface's longest extent (0.01 = 1 %), as `subdivide`.
+    #[arg(long, default_value_t = 0.01)]
+    pub margin: f64,
+    /// Raw little-endian float32 field, value of point (i, j, k) at (i·NY + j)·NZ + k.
+    #[arg(long, requires = "dims")]
+    pub field: Option<PathBuf>,
+    /// Grid points per axis of the field: NX,NY,NZ.
+    #[arg(long, value_delimiter = ',')]
+    pub dims: Vec<usize>,
+    /// Isovalue: inside where value ≤ iso.
+    #[arg(long, default_value_t = 0.0)]
+    pub iso: f64,
+    /// Output surface (off, obj, vtk, vtu).
+    #[arg(short, long)]
+    pub output: PathBuf,
+    /// Split the polygons into triangles.
+    #[arg(long)]
+    pub triangulate: bool,
+    /// Surface input format, overriding the extension.
+    #[arg(long)]
+    pub format: Option<String>,
+    /// Print a JSON report.
+    #[arg(long)]
+    pub json: bool,
+}
+
+pub fn run(a: Args) -> Result<ExitCode> {
+    let out_format = resolve_format(&a.output, None)?;
+    let (polygons, r, hexes, source) = if let Some(field) = &a.field {
+        let bytes = std::fs::read(field).with_context(|| format!("reading {}", field.display()))?;
+        if bytes.len() % 4 != 0 {
+            bail!("{}: {} bytes is not a whole number of float32 values", field.display(), bytes.len());
+        }
+        let values: Vec<f32> = bytes.chunks_exact(4).map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]])).collect();
+        let &[nx, ny, nz] = a.dims.as_slice() else {
+            bail!("--dims takes three sizes NX,NY,NZ, got {:?}", a.dims);
+        };
+        let dims = [nx, ny, nz];
+        let (s, r) =
+            marching_cubes_field(&values, dims, a.iso).map_err(|e| anyhow::anyhow!("{}: {e}", field.display()))?;
+        let hexes = (dims[0] - 1) * (dims[1] - 1) * (dims[2] - 1);
+        (s, r, hexes, field.clone())
+    } else {
+        let path = a.surface.clone().expect("clap requires a surface or a field");
+        if a.levels > 12 {
+            bail!("--levels {} is too deep (at most 12)", a.levels);
+        }
+        let surface = read_surface(&path, parse_format(&a.format)?)?;
+        let bvh = TriangleBvh::from_polygons(&surface.points, (0..surface.nb_polygons()).map(|i| surface.polygon(i)));
+        if bvh.is_empty() {
+            bail!("{}: no polygon", path.display());
+        }
+        let (s, r, hexes) = marching_cubes_surface(&bvh, a.levels, a.margin).map_err(|e| anyhow::anyhow!("{e}"))?;
+        (s, r, hexes, path)
+    };
+    let out = if a.triangulate { triangulate(&polygons) } else { polygons.clone() };
+    let (open_edges, chi) = match build_surface_map(&out) {
+        Ok((m, _)) => (Some(m.boundary_edges()), Some(m.count_cells().euler_characteristic(2))),
+        Err(_) => (None, None),
+    };
+    if out.nb_polygons() > 0 {
+        write_indexed(&a.output, &out, out_format, &WriteOptions::default())?;
+    }
+    if a.json {
+        let j = json!({
+            "input": source.display().to_string(),
+            "output": a.output.display().to_string(),
+            "hexahedra": hexes,
+            "f_patterns": r.f_patterns,
+            "v_patterns": r.v_patterns,
+            "edges_split": r.edges_split,
+            "faces_replaced": r.faces_replaced,
+            "volumes_replaced": r.volumes_replaced,
+            "unmatched_faces": r.unmatched_faces,
+            "unmatched_volumes": r.unmatched_volumes,
+            "polygons": polygons.nb_polygons(),
+            "triangles": triangulate(&polygons).nb_polygons(),
+            "open_edges": open_edges,
+            "manifold": open_edges.is_some(),
+            "euler_characteristic": chi,
+            "seconds": r.seconds,
+        });
+        println!("{}", serde_json::to_string_pretty(&j)?);
+    } else {
+        println!(
+            "{} hexahedra, {} f- and {} v-patterns: {} edges split, {} faces and {} cubes replaced ({} / {} unmatched)",
+            hexes,
+            r.f_patterns,
+            r.v_patterns,
+            r.edges_split,
+            r.faces_replaced,
+            r.volumes_replaced,
+            r.unmatched_faces,
+            r.unmatched_volumes
+        );
+        println!(
+            "surface: {} polygons ({} triangles), open edges {}, Euler characteristic {}; {:.3} s",
+            polygons.nb_polygons(),
+            triangulate(&polygons).nb_polygons(),
+            open_edges.map_or("n/a (non-manifold)".into(), |e| e.to_string()),
+            chi.map_or("n/a".into(), |c| c.to_string()),
+            r.seconds
+        );
+        if out.nb_polygons() > 0 {
+            println!("wrote {}", a.output.display());
+        } else {
+            println!("empty surface: nothing written");
+        }
+    }
+    Ok(if r.unmatched_volumes + r.unmatched_faces == 0 && open_edges.is_some() {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::from(1)
+    })
+}
