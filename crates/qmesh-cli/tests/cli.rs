@@ -185,3 +185,61 @@ fn quality_reports_scaled_jacobians() {
     assert!((tet["min"].as_f64().unwrap() - expected).abs() < 1e-12, "{tet}");
     assert!((tet["max"].as_f64().unwrap() - expected).abs() < 1e-12, "{tet}");
 }
+
+fn json_of(args: &[&str]) -> serde_json::Value {
+    let (code, out, err) = qmesh(args);
+    assert_eq!(code, 0, "{args:?}: {err}{out}");
+    serde_json::from_str(&out).unwrap_or_else(|e| panic!("{args:?}: {e}: {out}"))
+}
+
+#[test]
+fn octree_pipeline_subdivide_conformal_info() {
+    let (tets, box_off, octree, conf) = (temp("t.vtk"), temp("box.off"), temp("oct.vtk"), temp("conf.vtk"));
+    let s = |p: &PathBuf| p.to_str().unwrap().to_string();
+    let (code, _, err) = qmesh(&["generate", "tet-grid", "--size", "2,2,2", "-o", &s(&tets)]);
+    assert_eq!(code, 0, "{err}");
+    let (code, _, err) = qmesh(&["convert", &s(&tets), &s(&box_off)]);
+    assert_eq!(code, 0, "{err}");
+    let sub = json_of(&["subdivide", &s(&box_off), "--levels", "3", "-o", &s(&octree), "--json"]);
+    assert_eq!(sub["valid"], true);
+    assert!(sub["volumes"].as_u64().unwrap() > 8);
+    let direct = json_of(&["subdivide", &s(&box_off), "--levels", "3", "-o", &s(&temp("d.vtk")), "--direct", "--json"]);
+    assert_eq!(direct["volumes"], sub["volumes"]);
+    let info = json_of(&["info", &s(&octree), "--json"]);
+    assert!(info["non_conformal_faces"].as_u64().unwrap() > 0, "an octree has hanging vertices");
+    let c = json_of(&["conformal", &s(&octree), "-o", &s(&conf), "--json"]);
+    assert_eq!((c["unmatched_volumes"].as_u64(), c["valid"].as_bool()), (Some(0), Some(true)));
+    assert_eq!(c["v_patterns"], 325);
+    let info = json_of(&["info", &s(&conf), "--json"]);
+    assert_eq!((info["non_conformal_faces"].as_u64(), info["inverted_cells"].as_u64()), (Some(0), Some(0)));
+    let t = json_of(&["tet2hex", &s(&tets), "-o", &s(&temp("h.vtk")), "--json"]);
+    assert_eq!(t["cell_types"]["hex"], 4 * 48);
+}
+
+#[test]
+fn marching_cubes_of_a_field_file() {
+    let n = 12usize;
+    let c = (n as f32 - 1.0) / 2.0;
+    let mut bytes = Vec::new();
+    for i in 0..n {
+        for j in 0..n {
+            for k in 0..n {
+                let d = ((i as f32 - c).powi(2) + (j as f32 - c).powi(2) + (k as f32 - c).powi(2)).sqrt() - 3.7;
+                bytes.extend_from_slice(&d.to_le_bytes());
+            }
+        }
+    }
+    let field = temp("sphere.f32");
+    std::fs::write(&field, bytes).unwrap();
+    let out = temp("sphere.off");
+    let args =
+        ["marching-cubes", "--field", field.to_str().unwrap(), "--dims", "12,12,12", "-o", out.to_str().unwrap()];
+    let j = json_of(&[&args[..], &["--triangulate", "--json"]].concat());
+    assert_eq!((j["open_edges"].as_u64(), j["euler_characteristic"].as_i64()), (Some(0), Some(2)));
+    assert_eq!((j["f_patterns"].as_u64(), j["v_patterns"].as_u64()), (Some(4), Some(21)));
+    // A wrong size is refused with the file named.
+    let (code, _, err) =
+        qmesh(&["marching-cubes", "--field", field.to_str().unwrap(), "--dims", "5,5,5", "-o", out.to_str().unwrap()]);
+    assert_eq!(code, 2);
+    assert!(err.contains("sphere.f32") && err.contains("125 expected"), "{err}");
+}
