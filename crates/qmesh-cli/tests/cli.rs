@@ -243,3 +243,43 @@ fn marching_cubes_of_a_field_file() {
     assert_eq!(code, 2);
     assert!(err.contains("sphere.f32") && err.contains("125 expected"), "{err}");
 }
+
+#[test]
+fn marching_cubes_patterns_round_trip_through_moka() {
+    let dir = temp("mc-patterns");
+    let _ = std::fs::remove_dir_all(&dir);
+    let (code, out, err) = qmesh(&["patterns", "generate", "marching-cubes", "-o", dir.to_str().unwrap()]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("4 f-patterns, 21 v-patterns, 0 duplicates, 0 skipped"), "{out}");
+    let (code, _, err) =
+        qmesh(&["patterns", "generate", "marching-cubes", "-o", dir.to_str().unwrap(), "--format", "vtk"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("use --format moka"), "{err}");
+    // A one-cube field with two inside corners on a face diagonal (an ambiguous face).
+    let values: Vec<u8> = (0..8).flat_map(|i| if i == 0 || i == 6 { -1f32 } else { 1f32 }.to_le_bytes()).collect();
+    let field = temp("diag.f32");
+    std::fs::write(&field, values).unwrap();
+    let out = temp("d.off");
+    let run = |extra: &[&str]| {
+        let args = [
+            &[
+                "marching-cubes",
+                "--field",
+                field.to_str().unwrap(),
+                "--dims",
+                "2,2,2",
+                "-o",
+                out.to_str().unwrap(),
+                "--json",
+            ][..],
+            extra,
+        ]
+        .concat();
+        json_of(&args)
+    };
+    let built_in = run(&[]);
+    let from_files = run(&["--patterns", dir.to_str().unwrap()]);
+    assert_eq!(built_in["polygons"], 2, "two corners cut off separately");
+    assert_eq!(from_files["polygons"], built_in["polygons"]);
+    assert_eq!(from_files["unmatched_volumes"], 0);
+}

@@ -3,7 +3,7 @@
 
 mod common;
 
-use qmesh::apps::{marching_cubes_field, mc_face_patterns, mc_volume_patterns, triangulate};
+use qmesh::apps::{marching_cubes_field, mc_face_patterns, mc_pattern_set, mc_volume_patterns, triangulate};
 use qmesh::build::{IndexedMesh, build_surface_map};
 
 /// Open and non-manifold edges and the Euler characteristic of a polygon surface.
@@ -44,7 +44,7 @@ fn every_corner_configuration_is_covered() {
                 if config >> corner & 1 == 1 { -1.0 } else { 1.0 }
             })
             .collect();
-        let (surface, r) = marching_cubes_field(&values, [2, 2, 2], 0.0).expect("field");
+        let (surface, r) = marching_cubes_field(&values, [2, 2, 2], 0.0, &mc_pattern_set()).expect("field");
         assert_eq!((r.unmatched_faces, r.unmatched_volumes), (0, 0), "configuration {config:08b}");
         let expect_surface = config != 0 && config != 255;
         assert_eq!(surface.nb_polygons() > 0, expect_surface, "configuration {config:08b}");
@@ -56,7 +56,7 @@ fn sphere_and_torus_have_their_topology() {
     let n = 24;
     let c = (n as f64 - 1.0) / 2.0;
     let sphere = field(n, |x, y, z| ((x - c).powi(2) + (y - c).powi(2) + (z - c).powi(2)).sqrt() - 8.3);
-    let (s, r) = marching_cubes_field(&sphere, [n, n, n], 0.0).expect("sphere");
+    let (s, r) = marching_cubes_field(&sphere, [n, n, n], 0.0, &mc_pattern_set()).expect("sphere");
     assert_eq!((r.unmatched_faces, r.unmatched_volumes), (0, 0));
     assert_eq!(topology(&s), (0, 2));
     assert_eq!(topology(&triangulate(&s)), (0, 2));
@@ -64,7 +64,7 @@ fn sphere_and_torus_have_their_topology() {
         let q = ((x - c).powi(2) + (y - c).powi(2)).sqrt() - 6.5;
         (q * q + (z - c).powi(2)).sqrt() - 2.7
     });
-    let (t, _) = marching_cubes_field(&torus, [n, n, n], 0.0).expect("torus");
+    let (t, _) = marching_cubes_field(&torus, [n, n, n], 0.0, &mc_pattern_set()).expect("torus");
     assert_eq!(topology(&t), (0, 0));
 }
 
@@ -74,7 +74,7 @@ fn shared_fields_give_closed_surfaces() {
     for (name, n) in [("fields/field_noise_32.f32", 32), ("fields/field_gyroid_64.f32", 64)] {
         let bytes = std::fs::read(dir.join(name)).expect(name);
         let values: Vec<f32> = bytes.chunks_exact(4).map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]])).collect();
-        let (s, r) = marching_cubes_field(&values, [n, n, n], 0.0).expect(name);
+        let (s, r) = marching_cubes_field(&values, [n, n, n], 0.0, &mc_pattern_set()).expect(name);
         assert_eq!((r.unmatched_faces, r.unmatched_volumes), (0, 0), "{name}");
         let (open, chi) = topology(&s);
         assert_eq!(topology(&triangulate(&s)), (open, chi), "{name}: triangulated");

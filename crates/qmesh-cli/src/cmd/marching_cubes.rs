@@ -5,10 +5,11 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use anyhow::{Context, Result, bail};
-use qmesh::apps::{marching_cubes_field, marching_cubes_surface, triangulate};
+use qmesh::apps::{marching_cubes_field, marching_cubes_surface, mc_pattern_set, triangulate};
 use qmesh::build::build_surface_map;
 use qmesh::geom::TriangleBvh;
 use qmesh::io::{WriteOptions, read_surface, resolve_format, write_indexed};
+use qmesh::pattern::{FlagRule, PatternSet, load_pattern_dir};
 use serde_json::json;
 
 use super::parse_format;
@@ -36,6 +37,10 @@ pub struct Args {
     /// Output surface (off, obj, vtk, vtu).
     #[arg(short, long)]
     pub output: PathBuf,
+    /// Pattern folders (.moka with mark 0 on inside-corner darts, as `qmesh patterns
+    /// generate marching-cubes` writes them); default: the built-in set.
+    #[arg(long, num_args = 1..)]
+    pub patterns: Vec<PathBuf>,
     /// Split the polygons into triangles.
     #[arg(long)]
     pub triangulate: bool,
@@ -49,6 +54,18 @@ pub struct Args {
 
 pub fn run(a: Args) -> Result<ExitCode> {
     let out_format = resolve_format(&a.output, None)?;
+    let set = if a.patterns.is_empty() {
+        mc_pattern_set()
+    } else {
+        // Flags are not geometric here (inside corners): they come from the files' marks.
+        let mut set = PatternSet::default();
+        for dir in &a.patterns {
+            load_pattern_dir(dir, FlagRule::File).patterns.into_iter().for_each(|p| {
+                set.insert(p);
+            });
+        }
+        set
+    };
     let (polygons, r, hexes, source) = if let Some(field) = &a.field {
         let bytes = std::fs::read(field).with_context(|| format!("reading {}", field.display()))?;
         if bytes.len() % 4 != 0 {
@@ -59,8 +76,8 @@ pub fn run(a: Args) -> Result<ExitCode> {
             bail!("--dims takes three sizes NX,NY,NZ, got {:?}", a.dims);
         };
         let dims = [nx, ny, nz];
-        let (s, r) =
-            marching_cubes_field(&values, dims, a.iso).map_err(|e| anyhow::anyhow!("{}: {e}", field.display()))?;
+        let (s, r) = marching_cubes_field(&values, dims, a.iso, &set)
+            .map_err(|e| anyhow::anyhow!("{}: {e}", field.display()))?;
         let hexes = (dims[0] - 1) * (dims[1] - 1) * (dims[2] - 1);
         (s, r, hexes, field.clone())
     } else {
@@ -73,7 +90,8 @@ pub fn run(a: Args) -> Result<ExitCode> {
         if bvh.is_empty() {
             bail!("{}: no polygon", path.display());
         }
-        let (s, r, hexes) = marching_cubes_surface(&bvh, a.levels, a.margin).map_err(|e| anyhow::anyhow!("{e}"))?;
+        let (s, r, hexes) =
+            marching_cubes_surface(&bvh, a.levels, a.margin, &set).map_err(|e| anyhow::anyhow!("{e}"))?;
         (s, r, hexes, path)
     };
     let out = if a.triangulate { triangulate(&polygons) } else { polygons.clone() };

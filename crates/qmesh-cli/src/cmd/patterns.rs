@@ -47,9 +47,10 @@ pub enum Action {
         /// Output folder.
         #[arg(short, long)]
         output: PathBuf,
-        /// File format of the patterns.
-        #[arg(long, default_value = "vtk")]
-        format: PatternFormat,
+        /// File format of the patterns (default: vtk; moka for marching-cubes, whose
+        /// flags only Moka marks can carry).
+        #[arg(long)]
+        format: Option<PatternFormat>,
     },
     /// Write the boundary of every v-pattern as one polyhedral cell (side by side), e.g.
     /// to look at the configurations a set covers or to benchmark matching.
@@ -187,14 +188,17 @@ pub enum Generated {
     HexSubdivision,
     Tet2hex,
     Transitions,
+    MarchingCubes,
 }
 
-impl From<Generated> for GeneratedKind {
-    fn from(g: Generated) -> GeneratedKind {
-        match g {
-            Generated::HexSubdivision => GeneratedKind::HexSubdivision,
-            Generated::Tet2hex => GeneratedKind::Tet2Hex,
-            Generated::Transitions => GeneratedKind::Transitions,
+impl Generated {
+    /// The library's generated set, or None for marching cubes (written separately).
+    fn kind(self) -> Option<GeneratedKind> {
+        match self {
+            Generated::HexSubdivision => Some(GeneratedKind::HexSubdivision),
+            Generated::Tet2hex => Some(GeneratedKind::Tet2Hex),
+            Generated::Transitions => Some(GeneratedKind::Transitions),
+            Generated::MarchingCubes => None,
         }
     }
 }
@@ -208,8 +212,11 @@ pub enum PatternFormat {
 }
 
 /// `qmesh patterns generate`: writes `DIR/fpattern/*` and `DIR/vpattern/*`.
-fn generate(kind: Generated, dir: &std::path::Path, format: PatternFormat) -> Result<ExitCode> {
-    let kind: GeneratedKind = kind.into();
+fn generate(kind: Generated, dir: &std::path::Path, format: Option<PatternFormat>) -> Result<ExitCode> {
+    let Some(kind) = kind.kind() else {
+        return generate_marching_cubes(dir, format.unwrap_or(PatternFormat::Moka));
+    };
+    let format = format.unwrap_or(PatternFormat::Vtk);
     for (stem, volume, mesh) in generated_pattern_meshes(kind) {
         let sub = dir.join(if volume { "vpattern" } else { "fpattern" });
         std::fs::create_dir_all(&sub)?;
@@ -234,6 +241,35 @@ fn generate(kind: Generated, dir: &std::path::Path, format: PatternFormat) -> Re
     println!(
         "{}: {} f-patterns, {} v-patterns, {} duplicates, {} skipped",
         kind.name(),
+        set.count(PatternKind::Face),
+        set.count(PatternKind::Volume),
+        report.duplicates.len(),
+        report.skipped.len()
+    );
+    Ok(ExitCode::SUCCESS)
+}
+
+/// The marching-cubes set: its flags mark inside corners, which geometry cannot tell,
+/// so it is written as `.moka` with mark 0 and read back with `--flags file`.
+fn generate_marching_cubes(dir: &std::path::Path, format: PatternFormat) -> Result<ExitCode> {
+    if let PatternFormat::Vtk = format {
+        anyhow::bail!("marching-cubes patterns flag inside corners, which VTK cannot carry: use --format moka");
+    }
+    let faces = qmesh::apps::mc_face_patterns().into_iter().map(|p| (p, "fpattern"));
+    let volumes = qmesh::apps::mc_volume_patterns().into_iter().map(|p| (p, "vpattern"));
+    for ((name, mut map, flags), sub) in faces.chain(volumes) {
+        let sub = dir.join(sub);
+        std::fs::create_dir_all(&sub)?;
+        let mark = map.reserve_mark()?;
+        flags.iter().for_each(|&d| map.mark(d, mark));
+        let file = sub.join(format!("{name}.moka"));
+        qmesh::io::write_moka_with_flags(&file, &map, mark)?;
+        println!("wrote {}", file.display());
+    }
+    let set = load_pattern_dir(dir, FlagRule::File);
+    let report = audit(&set);
+    println!(
+        "marching-cubes: {} f-patterns, {} v-patterns, {} duplicates, {} skipped",
         set.count(PatternKind::Face),
         set.count(PatternKind::Volume),
         report.duplicates.len(),

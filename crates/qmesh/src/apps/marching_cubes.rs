@@ -4,10 +4,9 @@
 
 use std::time::Instant;
 
-use super::mc_patterns::mc_pattern_set;
 use crate::build::IndexedMesh;
 use crate::cmap::{CMap3, Dart, MapError, Orbit, OrbitWalker};
-use crate::pattern::PatternKind;
+use crate::pattern::{PatternKind, PatternSet};
 use crate::replace::replace_cells;
 use crate::signature::Flags;
 
@@ -26,7 +25,7 @@ pub struct McReport {
 }
 
 /// Extracts the surface between the vertices with `inside[v]` and the others (vertex
-/// ids of `map`); `crossing(a, b)` places the new vertex on an edge from inside vertex
+/// ids of `map`) with the patterns of `set` (usually [`super::mc_pattern_set`]); `crossing(a, b)` places the new vertex on an edge from inside vertex
 /// `a` to outside vertex `b`. The map keeps the replaced cells; the surface's polygons
 /// are returned oriented with normals pointing outside.
 ///
@@ -36,9 +35,9 @@ pub fn marching_cubes(
     map: &mut CMap3,
     inside: &[bool],
     crossing: &dyn Fn(u32, u32) -> [f64; 3],
+    set: &PatternSet,
 ) -> Result<(IndexedMesh, McReport), MapError> {
     let t = Instant::now();
-    let set = mc_pattern_set();
     let mut r = McReport {
         f_patterns: set.count(PatternKind::Face),
         v_patterns: set.count(PatternKind::Volume),
@@ -71,7 +70,7 @@ pub fn marching_cubes(
         .cells(Orbit::Volume)
         .filter(|&d| w.collect(map, d, Orbit::Volume).iter().any(|&x| is_new(map.vertex_of(x))))
         .collect();
-    let rep = replace_cells(map, &set, Flags::Mark(flag), &faces, &volumes, true);
+    let rep = replace_cells(map, set, Flags::Mark(flag), &faces, &volumes, true);
     map.free_mark(flag);
     r.faces_replaced = rep.faces_replaced;
     r.volumes_replaced = rep.volumes_replaced;
@@ -152,7 +151,12 @@ pub fn triangulate(mesh: &IndexedMesh) -> IndexedMesh {
 ///
 /// # Errors
 /// A value count that does not match `dims`, or dims below 2.
-pub fn marching_cubes_field(values: &[f32], dims: [usize; 3], iso: f64) -> Result<(IndexedMesh, McReport), String> {
+pub fn marching_cubes_field(
+    values: &[f32],
+    dims: [usize; 3],
+    iso: f64,
+    set: &PatternSet,
+) -> Result<(IndexedMesh, McReport), String> {
     let [nx, ny, nz] = dims;
     if dims.iter().any(|&n| n < 2) {
         return Err(format!("grid dimensions {nx}×{ny}×{nz}: at least 2 points per axis"));
@@ -176,7 +180,7 @@ pub fn marching_cubes_field(values: &[f32], dims: [usize; 3], iso: f64) -> Resul
         let (p, q) = (map_position(a, nx, ny), map_position(b, nx, ny));
         [0, 1, 2].map(|k| p[k] + t * (q[k] - p[k]))
     };
-    marching_cubes(&mut map, &inside, &crossing).map_err(|e| e.to_string())
+    marching_cubes(&mut map, &inside, &crossing, set).map_err(|e| e.to_string())
 }
 
 fn map_position(v: u32, nx: usize, ny: usize) -> [f64; 3] {
@@ -194,6 +198,7 @@ pub fn marching_cubes_surface(
     surface: &crate::geom::TriangleBvh,
     levels: u8,
     margin: f64,
+    set: &PatternSet,
 ) -> Result<(IndexedMesh, McReport, usize), String> {
     let tree = super::subdivide::octree_around(surface, levels, margin);
     let hexes = tree.to_mesh();
@@ -206,6 +211,6 @@ pub fn marching_cubes_surface(
         let (p, q) = (points[a as usize], points[b as usize]);
         [0, 1, 2].map(|k| 0.5 * (p[k] + q[k]))
     };
-    let (s, r) = marching_cubes(&mut map, &inside, &crossing).map_err(|e| e.to_string())?;
+    let (s, r) = marching_cubes(&mut map, &inside, &crossing, set).map_err(|e| e.to_string())?;
     Ok((s, r, tree.leaves.len()))
 }

@@ -146,6 +146,12 @@ pub fn read_surface(path: &Path, forced: Option<Format>) -> IoResult<IndexedMesh
     Ok(crate::build::boundary_polygons(&map))
 }
 
+/// Writes a map as `.moka` (atomically) with the darts of `flags` marked: patterns
+/// whose flags are not geometric (marching cubes) keep them this way.
+pub fn write_moka_with_flags(path: &Path, map: &CMap3, flags: crate::cmap::Mark) -> IoResult<()> {
+    write_atomically(path, |w| moka::write(path, map, Some(flags), w))
+}
+
 /// Reads a `.moka` file with the darts its marks flag (see `moka::read_with_flags`).
 pub fn read_moka_with_flags(path: &Path) -> IoResult<(CMap3, Vec<crate::cmap::Dart>)> {
     let data = std::fs::read(path).map_err(|e| IoError::io(path, e))?;
@@ -235,7 +241,7 @@ pub fn write_indexed(path: &Path, mesh: &IndexedMesh, format: Format, opts: &Wri
 pub fn write_map(path: &Path, map: &CMap3, forced: Option<Format>, opts: &WriteOptions) -> IoResult<()> {
     let format = resolve_format(path, forced)?;
     match format {
-        Format::Moka => write_atomically(path, |w| moka::write(path, map, w)),
+        Format::Moka => write_atomically(path, |w| moka::write(path, map, None, w)),
         Format::Off | Format::Obj => write_indexed(path, &boundary_polygons(map), format, opts),
         Format::Stl | Format::Ply => {
             Err(IoError::unsupported(path, format!("qmesh reads .{} but does not write it", format.name())))

@@ -184,8 +184,9 @@ pub fn read_with_flags(path: &Path, data: &[u8]) -> IoResult<(CMap3, Vec<Dart>)>
     Ok((map, flagged))
 }
 
-/// Writes a map as a `.moka` generalized map: dart k → g-darts 2k, 2k+1.
-pub fn write(path: &Path, map: &CMap3, w: &mut dyn Write) -> IoResult<()> {
+/// Writes a map as a `.moka` generalized map: dart k → g-darts 2k, 2k+1; the darts
+/// of `flags` carry Moka mark 0 (the papers' pattern flags).
+pub fn write(path: &Path, map: &CMap3, flags: Option<crate::cmap::Mark>, w: &mut dyn Write) -> IoResult<()> {
     let io = |e| IoError::io(path, e);
     let mut index = vec![u32::MAX; map.dart_capacity()];
     let darts: Vec<Dart> = map.darts().collect();
@@ -194,7 +195,8 @@ pub fn write(path: &Path, map: &CMap3, w: &mut dyn Write) -> IoResult<()> {
     }
     let gi = |d: Option<Dart>| d.map(|d| index[d.idx()]);
     let mut has_point = vec![false; map.nb_vertex_ids()];
-    writeln!(w, "Moka file [ascii]\n0 0 0 0 0 0 0 0 ").map_err(io)?;
+    let used = u8::from(flags.is_some());
+    writeln!(w, "Moka file [ascii]\n0 {used} 0 0 0 0 0 0 ").map_err(io)?;
     for (k, &d) in darts.iter().enumerate() {
         let (a, b) = (2 * k as u32, 2 * k as u32 + 1);
         let prev = gi(map.beta(d, 0)).map_or(a, |p| 2 * p + 1);
@@ -207,7 +209,8 @@ pub fn write(path: &Path, map: &CMap3, w: &mut dyn Write) -> IoResult<()> {
         let p = point.map_or("0".to_string(), |p| format!("1\t{}\t{}\t{}", p[0], p[1], p[2]));
         let (a2, b2) = o2.map_or((a, b), |m| (2 * m + 1, 2 * m));
         let (a3, b3) = o3.map_or((a, b), |m| (2 * m + 1, 2 * m));
-        writeln!(w, "{b}\t{prev}\t{a2}\t{a3}\t0\t0\t0\t0\t{p}").map_err(io)?;
+        let m = u8::from(flags.is_some_and(|f| map.is_marked(d, f)));
+        writeln!(w, "{b}\t{prev}\t{a2}\t{a3}\t{m}\t0\t0\t0\t{p}").map_err(io)?;
         writeln!(w, "{a}\t{next}\t{b2}\t{b3}\t0\t0\t0\t0\t0").map_err(io)?;
     }
     Ok(())
