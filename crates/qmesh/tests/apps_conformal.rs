@@ -61,7 +61,7 @@ fn octree_of_the_bunny_becomes_conformal() {
     let Some(dir) = common::data_dir() else { return };
     let s = read_surface(&dir.join("surface/bunny.off"), None).expect("bunny");
     let bvh = TriangleBvh::from_polygons(&s.points, (0..s.nb_polygons()).map(|i| s.polygon(i)));
-    let octree = subdivide(&bvh, &SubdivideOptions { levels: 4, direct: true, ..Default::default() }, &|_| {})
+    let octree = subdivide(&bvh, &SubdivideOptions { levels: 4, direct: true, ..Default::default() }, None, &|_| {})
         .expect("subdivide")
         .mesh;
     let mut papers = PatternSet::default();

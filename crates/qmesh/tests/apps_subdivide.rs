@@ -48,7 +48,7 @@ fn max_points_inside_an_edge(m: &IndexedMesh) -> usize {
 
 fn run(surface: &TriangleBvh, levels: u8, direct: bool) -> qmesh::apps::Subdivision {
     let opts = SubdivideOptions { levels, direct, ..Default::default() };
-    subdivide(surface, &opts, &|_| {}).expect("subdivide")
+    subdivide(surface, &opts, None, &|_| {}).expect("subdivide")
 }
 
 #[test]
@@ -86,11 +86,19 @@ fn bunny_at_level_four_both_ways() {
     let direct = run(&bvh, 4, true);
     assert_eq!(qr.mesh, direct.mesh);
     assert_eq!(qr.report.volumes, 1842);
+    // The papers' own hexa-8-subdivision patterns (drawn in Moka) give the same cells.
+    let papers = qmesh::pattern::load_pattern_dir(
+        &dir.join("patterns/cgal/hexa-8-subdivision"),
+        qmesh::pattern::FlagRule::Corners,
+    );
+    let opts = SubdivideOptions { levels: 4, ..Default::default() };
+    let with_papers = subdivide(&bvh, &opts, Some(&papers), &|_| {}).expect("subdivide");
+    assert_eq!(with_papers.mesh, qr.mesh);
     assert!(qr.map.expect("map").is_valid().is_empty());
     assert_eq!(max_points_inside_an_edge(&qr.mesh), 1);
     // Removing the outside keeps the cells the surface touches and those inside.
     let opts = SubdivideOptions { levels: 4, direct: true, remove_outside: true, ..Default::default() };
-    let kept = subdivide(&bvh, &opts, &|_| {}).expect("subdivide").report;
+    let kept = subdivide(&bvh, &opts, None, &|_| {}).expect("subdivide").report;
     assert_eq!(kept.volumes + kept.removed_outside, 1842);
     assert!(kept.removed_outside > 500 && kept.volumes > 1000, "{kept:?}");
 }

@@ -12,7 +12,7 @@ fn every_tetrahedron_becomes_four_positive_hexahedra() {
     for name in ["tet/gmsh_sphere_tet.msh", "tet/gmsh_torus_tet_v22.msh", "tet/CAD0.mesh"] {
         let mut loaded = load_map(&dir.join(name), None, &BuildOptions::default()).expect(name);
         let before = loaded.map.count_cells();
-        let r = tet_to_hex(&mut loaded.map, true).expect("tet2hex");
+        let r = tet_to_hex(&mut loaded.map, None, true).expect("tet2hex");
         assert!(loaded.map.is_valid().is_empty(), "{name}");
         assert_eq!(r.volumes_replaced, before.volumes, "{name}");
         let after = loaded.map.count_cells();

@@ -8,7 +8,7 @@ use anyhow::{Result, bail};
 use qmesh::apps::{GeneratedKind, conformal, generated_pattern_set};
 use qmesh::build::extract;
 use qmesh::io::{Loaded, WriteOptions, read, resolve_format, write_indexed};
-use qmesh::pattern::{FlagRule, PatternKind, PatternSet, load_pattern_dir};
+use qmesh::pattern::{FlagRule, PatternKind};
 use serde_json::json;
 
 use super::parse_format;
@@ -43,16 +43,9 @@ pub fn run(a: Args) -> Result<ExitCode> {
         bail!("{} is the input file; refusing to overwrite it (use --force)", a.output.display());
     }
     let out_format = resolve_format(&a.output, None)?;
-    let set = if a.patterns.is_empty() {
-        generated_pattern_set(GeneratedKind::Transitions, FlagRule::Corners)?
-    } else {
-        let mut set = PatternSet::default();
-        for dir in &a.patterns {
-            load_pattern_dir(dir, FlagRule::Corners).patterns.into_iter().for_each(|p| {
-                set.insert(p);
-            });
-        }
-        set
+    let set = match super::patterns::load_sets(&a.patterns)? {
+        Some(set) => set,
+        None => generated_pattern_set(GeneratedKind::Transitions, FlagRule::Corners)?,
     };
     if set.count(PatternKind::Volume) == 0 {
         bail!("no v-pattern in {:?}", a.patterns);

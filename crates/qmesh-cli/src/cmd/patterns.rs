@@ -8,7 +8,7 @@ use anyhow::Result;
 use qmesh::apps::{GeneratedKind, generated_pattern_meshes};
 use qmesh::build::{BuildOptions, build_map};
 use qmesh::io::{Format, WriteOptions, load_map, write_indexed, write_map};
-use qmesh::pattern::{FlagRule, PatternKind, audit, boundaries_mesh, load_pattern_dir};
+use qmesh::pattern::{FlagRule, PatternKind, PatternSet, audit, boundaries_mesh, load_pattern_dir};
 use qmesh::replace::{ReplaceOptions, Uncovered, query_replace};
 use serde_json::json;
 
@@ -276,4 +276,26 @@ fn generate_marching_cubes(dir: &std::path::Path, format: PatternFormat) -> Resu
         report.skipped.len()
     );
     Ok(ExitCode::SUCCESS)
+}
+
+/// The patterns of the given folders with corner flags, or None when there are none
+/// (the command's generated set applies). Fails when folders hold no usable pattern.
+pub fn load_sets(dirs: &[PathBuf]) -> Result<Option<PatternSet>> {
+    if dirs.is_empty() {
+        return Ok(None);
+    }
+    let mut set = PatternSet::default();
+    for dir in dirs {
+        let s = load_pattern_dir(dir, FlagRule::Corners);
+        for sk in &s.skipped {
+            eprintln!("warning: skipped pattern {}: {}", sk.file.display(), sk.reason);
+        }
+        s.patterns.into_iter().for_each(|p| {
+            set.insert(p);
+        });
+    }
+    if set.patterns.is_empty() {
+        anyhow::bail!("no usable pattern in {dirs:?}");
+    }
+    Ok(Some(set))
 }

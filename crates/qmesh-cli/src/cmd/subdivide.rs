@@ -31,6 +31,10 @@ pub struct Args {
     /// Drop the hexahedra outside the surface that it does not touch.
     #[arg(long)]
     pub remove_outside: bool,
+    /// Pattern folders replacing the generated `hex-subdivision` set (e.g. the papers'
+    /// hexa-8-subdivision, or an edited `qmesh patterns generate` output).
+    #[arg(long, num_args = 1..)]
+    pub patterns: Vec<PathBuf>,
     /// Test patterns directly instead of looking signatures up.
     #[arg(long)]
     pub no_signatures: bool,
@@ -66,7 +70,8 @@ pub fn run(a: Args) -> Result<ExitCode> {
         use_signatures: !a.no_signatures,
     };
     let pb = crate::progress::bar(u64::from(a.levels), "subdivide", a.quiet || a.json);
-    let s = subdivide(&bvh, &opts, &|l| pb.set_position(u64::from(l) - 1))?;
+    let set = super::patterns::load_sets(&a.patterns)?;
+    let s = subdivide(&bvh, &opts, set.as_ref(), &|l| pb.set_position(u64::from(l) - 1))?;
     pb.finish_and_clear();
     let validity = s.map.as_ref().map(|m| m.is_valid().is_empty());
     write_indexed(&a.output, &s.mesh, out_format, &WriteOptions::default())?;

@@ -19,6 +19,9 @@ pub struct Args {
     /// Output hexahedral mesh.
     #[arg(short, long)]
     pub output: PathBuf,
+    /// Pattern folders replacing the generated `tet2hex` set.
+    #[arg(long, num_args = 1..)]
+    pub patterns: Vec<PathBuf>,
     /// Print a JSON report.
     #[arg(long)]
     pub json: bool,
@@ -35,7 +38,8 @@ pub fn run(a: Args) -> Result<ExitCode> {
     let opts = BuildOptions { fix_orientation: a.input.fix_orientation };
     let mut loaded = load_map(&a.input.input, parse_format(&a.input.format)?, &opts)?;
     let before = loaded.map.count_cells();
-    let r = tet_to_hex(&mut loaded.map, true)?;
+    let set = super::patterns::load_sets(&a.patterns)?;
+    let r = tet_to_hex(&mut loaded.map, set.as_ref(), true)?;
     let valid = loaded.map.is_valid().is_empty();
     let (cells, kinds) = extract(&loaded.map);
     let quality = quality_by_kind(&cells);

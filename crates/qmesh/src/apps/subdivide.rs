@@ -62,13 +62,15 @@ pub struct Subdivision {
     pub report: SubdivideReport,
 }
 
-/// Subdivides around `surface`; `progress(level)` is called as each level starts.
+/// Subdivides around `surface` with `patterns` (default: the generated
+/// `hex-subdivision` set); `progress(level)` is called as each level starts.
 ///
 /// # Errors
 /// Only if the map runs out of marks (it cannot: the pipeline uses two).
 pub fn subdivide(
     surface: &TriangleBvh,
     opts: &SubdivideOptions,
+    patterns: Option<&PatternSet>,
     progress: &dyn Fn(u8),
 ) -> Result<Subdivision, MapError> {
     let t = Instant::now();
@@ -77,7 +79,7 @@ pub fn subdivide(
         let (tree, r) = subdivide_direct(root, surface, opts.levels, progress);
         (tree, None, r)
     } else {
-        let (map, r) = subdivide_qr(root, surface, opts, progress)?;
+        let (map, r) = subdivide_qr(root, surface, opts, patterns, progress)?;
         let tree = Octree { root, leaves: map_cells(&map, root).into_iter().collect() };
         (tree, Some(map), r)
     };
@@ -127,10 +129,18 @@ fn subdivide_qr(
     root: RootBox,
     surface: &TriangleBvh,
     opts: &SubdivideOptions,
+    patterns: Option<&PatternSet>,
     progress: &dyn Fn(u8),
 ) -> Result<(CMap3, SubdivideReport), MapError> {
-    let set = generated_pattern_set(GeneratedKind::HexSubdivision, FlagRule::Corners)
-        .expect("the generated subdivision patterns are valid (tested)");
+    let generated;
+    let set = match patterns {
+        Some(p) => p,
+        None => {
+            generated = generated_pattern_set(GeneratedKind::HexSubdivision, FlagRule::Corners)
+                .expect("the generated subdivision patterns are valid (tested)");
+            &generated
+        }
+    };
     let mut map = build_map(Octree::new(root).to_mesh(), &BuildOptions::default()).expect("one hexahedron builds").0;
     // Each dart's label is the level of its volume (replacements copy labels to the
     // darts they create; children are relabelled after each refinement).
@@ -151,7 +161,7 @@ fn subdivide_qr(
         plan.sort_unstable();
         for batch in plan.chunk_by(|a, b| a.0 == b.0) {
             let cells: Vec<Dart> = batch.iter().map(|&(_, d)| d).collect();
-            refine(&mut map, &set, &cells, batch[0].0 + 1, opts.use_signatures, &mut r)?;
+            refine(&mut map, set, &cells, batch[0].0 + 1, opts.use_signatures, &mut r)?;
         }
     }
     Ok((map, r))

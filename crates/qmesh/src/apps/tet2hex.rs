@@ -4,16 +4,28 @@
 
 use super::generated_patterns::{GeneratedKind, generated_pattern_set};
 use crate::cmap::{CMap3, MapError};
-use crate::pattern::FlagRule;
+use crate::pattern::{FlagRule, PatternSet};
 use crate::replace::{ReplaceOptions, ReplaceReport, query_replace};
 
-/// Runs the transformation in place. Cells that are not tetrahedra are left as they
+/// Runs the transformation in place with `patterns` (default: the generated `tet2hex`
+/// set). Cells that are not tetrahedra are left as they
 /// are (their faces too, unless they are triangles shared with a tetrahedron).
 ///
 /// # Errors
 /// Only if the map has no free mark.
-pub fn tet_to_hex(map: &mut CMap3, use_signatures: bool) -> Result<ReplaceReport, MapError> {
-    let set = generated_pattern_set(GeneratedKind::Tet2Hex, FlagRule::Corners)
-        .expect("the generated tet2hex patterns are valid (tested)");
-    query_replace(map, &set, &ReplaceOptions { split_edges: Some(2), flags: FlagRule::Corners, use_signatures })
+pub fn tet_to_hex(
+    map: &mut CMap3,
+    patterns: Option<&PatternSet>,
+    use_signatures: bool,
+) -> Result<ReplaceReport, MapError> {
+    let generated;
+    let set = match patterns {
+        Some(p) => p,
+        None => {
+            generated = generated_pattern_set(GeneratedKind::Tet2Hex, FlagRule::Corners)
+                .expect("the generated tet2hex patterns are valid (tested)");
+            &generated
+        }
+    };
+    query_replace(map, set, &ReplaceOptions { split_edges: Some(2), flags: FlagRule::Corners, use_signatures })
 }
