@@ -40,6 +40,8 @@ enum Command {
     Tet2hex(cmd::tet2hex::Args),
     /// Marching cubes by query-replace (2022 Algorithm 6), from a surface or a field.
     MarchingCubes(cmd::marching_cubes::Args),
+    /// A PNG picture: cells shrunk apart, optionally clipped, coloured by type/level/quality/label/component.
+    Render(cmd::render::Args),
     /// A short tour on built-in inputs: generate, inspect, split edges, write files.
     Demo(cmd::demo::Args),
 }
@@ -59,6 +61,7 @@ fn main() -> ExitCode {
         Command::Conformal(a) => cmd::conformal::run(a),
         Command::Tet2hex(a) => cmd::tet2hex::run(a),
         Command::MarchingCubes(a) => cmd::marching_cubes::run(a),
+        Command::Render(a) => cmd::render::run(a),
     };
     match result {
         Ok(code) => code,

@@ -283,3 +283,41 @@ fn marching_cubes_patterns_round_trip_through_moka() {
     assert_eq!(from_files["polygons"], built_in["polygons"]);
     assert_eq!(from_files["unmatched_volumes"], 0);
 }
+
+/// Width, height and the number of non-white pixels of a PNG.
+fn png_stats(path: &std::path::Path) -> (u32, u32, usize) {
+    let decoder = png::Decoder::new(std::io::BufReader::new(std::fs::File::open(path).unwrap()));
+    let mut reader = decoder.read_info().unwrap();
+    let mut buf = vec![0; reader.output_buffer_size().unwrap()];
+    let info = reader.next_frame(&mut buf).unwrap();
+    let ink = buf[..info.buffer_size()].chunks(3).filter(|p| p != &[255, 255, 255]).count();
+    (info.width, info.height, ink)
+}
+
+#[test]
+fn render_draws_shrunk_clipped_cells() {
+    let grid = temp("rg.vtk");
+    let (code, _, err) = qmesh(&["generate", "grid", "--size", "6,6,6", "-o", grid.to_str().unwrap()]);
+    assert_eq!(code, 0, "{err}");
+    let png = temp("rg.png");
+    let all = json_of(&["render", grid.to_str().unwrap(), "-o", png.to_str().unwrap(), "--size", "320,240", "--json"]);
+    assert_eq!((all["cells"].as_u64(), all["cells_drawn"].as_u64()), (Some(216), Some(216)));
+    let (w, h, ink) = png_stats(&png);
+    assert_eq!((w, h), (320, 240));
+    assert!(ink > 320 * 240 / 10, "the mesh covers part of the picture: {ink} pixels");
+    let half = json_of(&[
+        "render",
+        grid.to_str().unwrap(),
+        "-o",
+        png.to_str().unwrap(),
+        "--clip",
+        "x<50%",
+        "--view",
+        "30,20",
+        "--json",
+    ]);
+    assert_eq!(half["cells_drawn"], 108);
+    let (code, _, err) = qmesh(&["render", grid.to_str().unwrap(), "-o", png.to_str().unwrap(), "--clip", "w<3"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("axis 'w'"), "{err}");
+}

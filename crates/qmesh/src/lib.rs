@@ -12,5 +12,6 @@ pub mod generate;
 pub mod geom;
 pub mod io;
 pub mod pattern;
+pub mod render;
 pub mod replace;
 pub mod signature;

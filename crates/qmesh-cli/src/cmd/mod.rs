@@ -8,6 +8,7 @@ pub mod info;
 pub mod marching_cubes;
 pub mod patterns;
 pub mod quality;
+pub mod render;
 pub mod replace;
 pub mod subdivide;
 pub mod tet2hex;

@@ -10,6 +10,9 @@ use super::error::{IoError, IoResult};
 use super::lexer::{Lexer, clip};
 use crate::build::{CellKind, CellValues, IndexedMesh};
 
+/// Integer cell arrays qmesh writes and reads back (octree level, matched pattern).
+pub(super) const INT_ARRAYS: &[&str] = &["level", "pattern_id"];
+
 /// Names of cell arrays read as volume labels.
 pub const LABEL_ARRAYS: &[&str] =
     &["CellEntityIds", "gmsh:physical", "gmsh:geometrical", "medit:ref", "label", "labels", "MaterialIds"];
@@ -94,8 +97,9 @@ impl<'a> Reader<'a> {
     }
 
     /// Skips one attribute block of CELL_DATA/POINT_DATA with `n` tuples; returns a
-    /// label array when the block is one.
-    fn attribute(&mut self, kw: &str, n: usize) -> IoResult<Option<Vec<i64>>> {
+    /// label array when the block is one, and sets `named` to a one-component SCALARS
+    /// array's name and values (for the integer arrays qmesh writes).
+    fn attribute(&mut self, kw: &str, n: usize, named: &mut Option<(String, Vec<i64>)>) -> IoResult<Option<Vec<i64>>> {
         match kw {
             "SCALARS" => {
                 let name = self.lx.expect("an array name")?;
@@ -113,7 +117,13 @@ impl<'a> Reader<'a> {
                     self.lx.expect("a lookup table name")?;
                 }
                 let v = self.integers_or_floats(n * ncomp, t, s, name)?;
-                Ok(LABEL_ARRAYS.contains(&name).then_some(v))
+                if LABEL_ARRAYS.contains(&name) {
+                    return Ok(Some(v));
+                }
+                if ncomp == 1 && INT_ARRAYS.contains(&name) {
+                    *named = Some((name.to_string(), v));
+                }
+                Ok(None)
             }
             "VECTORS" | "NORMALS" | "TENSORS" => {
                 self.lx.expect("an array name")?;
@@ -291,6 +301,7 @@ pub fn read(path: &Path, data: &[u8]) -> IoResult<IndexedMesh> {
     let mut polys: Vec<CellList> = Vec::new();
     let mut types: Option<Vec<i64>> = None;
     let mut labels: Option<Vec<i64>> = None;
+    let mut arrays: Vec<(String, Vec<i64>)> = Vec::new();
     let mut tuples = 0usize;
     let mut in_cell_data = false;
     while let Some(kw) = r.lx.token() {
@@ -320,18 +331,29 @@ pub fn read(path: &Path, data: &[u8]) -> IoResult<IndexedMesh> {
                 tuples = r.lx.count("data tuples", 1)?;
             }
             "FIELD" if tuples == 0 => {
-                r.attribute(kw, 0)?;
+                r.attribute(kw, 0, &mut None)?;
             }
             _ => {
-                let l = r.attribute(kw, tuples)?;
+                let mut named = None;
+                let l = r.attribute(kw, tuples, &mut named)?;
                 if in_cell_data && l.is_some() && labels.is_none() {
                     labels = l;
+                }
+                if in_cell_data && let Some(a) = named {
+                    arrays.push(a);
                 }
             }
         }
     }
     let lx = &r.lx;
-    assemble(&|m| lx.err(m), points, cells, types, polys, labels)
+    let mut mesh = assemble(&|m| lx.err(m), points, cells, types, polys, labels)?;
+    // Arrays qmesh wrote (one value per cell, no cell skipped) come back as they were.
+    for (name, v) in arrays {
+        if v.len() == mesh.nb_cells() && mesh.is_volume() {
+            mesh.set_cell_array(&name, CellValues::Int(v.iter().map(|&x| x as i32).collect()));
+        }
+    }
+    Ok(mesh)
 }
 
 /// Turns the parsed sections into an indexed mesh, checking every index and type.

@@ -1,0 +1,294 @@
+//! Pictures of meshes as the papers draw them: every cell shrunk toward its centroid so
+//! cells are seen apart, optionally cut open by a plane, flat-shaded, coloured by cell
+//! type, level, quality, label or component, with edges and a legend.
+
+use std::time::Instant;
+
+use super::font::{draw_text, text_width};
+use super::raster::{Canvas, Rgb};
+use crate::build::{CellKind, CellValues, IndexedMesh, cell_scaled_jacobian};
+use crate::geom::{Aabb, cross, dot, sub};
+
+/// What decides a cell's colour.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ColorBy {
+    Type,
+    Level,
+    Quality,
+    Label,
+    Component,
+}
+
+/// Keep the cells whose centroid has coordinate `axis` below (or above) `value`, or,
+/// when `relative`, below the fraction `value` of the mesh's extent along that axis.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Clip {
+    pub axis: usize,
+    pub below: bool,
+    pub value: f64,
+    pub relative: bool,
+}
+
+/// Options of [`render`].
+#[derive(Clone, Copy, Debug)]
+pub struct RenderOptions {
+    /// Cells shrunk toward their centroid by this factor (1 = no gap).
+    pub shrink: f64,
+    pub clip: Option<Clip>,
+    pub color_by: ColorBy,
+    /// Viewing direction: azimuth and elevation in degrees (the eye's direction from
+    /// the mesh centre; z is up).
+    pub view: (f64, f64),
+    pub size: (usize, usize),
+    pub edges: bool,
+}
+
+impl Default for RenderOptions {
+    fn default() -> Self {
+        RenderOptions {
+            shrink: 0.85,
+            clip: None,
+            color_by: ColorBy::Type,
+            view: (-55.0, 25.0),
+            size: (1200, 900),
+            edges: true,
+        }
+    }
+}
+
+/// What [`render`] drew.
+#[derive(Clone, Debug, Default)]
+pub struct RenderReport {
+    pub cells: usize,
+    pub cells_drawn: usize,
+    pub triangles: usize,
+    pub seconds: f64,
+}
+
+const PALETTE: [Rgb; 10] = [
+    [78, 121, 167],
+    [242, 142, 43],
+    [225, 87, 89],
+    [118, 183, 178],
+    [89, 161, 79],
+    [237, 201, 72],
+    [176, 122, 161],
+    [255, 157, 167],
+    [156, 117, 95],
+    [186, 176, 172],
+];
+
+fn type_colour(k: CellKind) -> Rgb {
+    match k {
+        CellKind::Hex => PALETTE[0],
+        CellKind::Tet => PALETTE[2],
+        CellKind::Prism => PALETTE[4],
+        CellKind::Pyramid => PALETTE[1],
+        CellKind::Polyhedron => PALETTE[6],
+    }
+}
+
+/// Red (≤ 0) → yellow (0.5) → green (1) for a scaled Jacobian.
+fn quality_colour(q: f64) -> Rgb {
+    let t = q.clamp(0.0, 1.0);
+    if t < 0.5 { [220, (60.0 + 340.0 * t) as u8, 50] } else { [(220.0 - 340.0 * (t - 0.5)) as u8, 200, 50] }
+}
+
+/// Camera: orthonormal right, up and forward (into the scene) vectors.
+fn camera(view: (f64, f64)) -> ([f64; 3], [f64; 3], [f64; 3]) {
+    let (az, el) = (view.0.to_radians(), view.1.to_radians());
+    let eye = [el.cos() * az.cos(), el.cos() * az.sin(), el.sin()];
+    let f = eye.map(|c| -c);
+    let up0 = if el.cos().abs() < 1e-6 { [0.0, 1.0, 0.0] } else { [0.0, 0.0, 1.0] };
+    let r = normalise(cross(f, up0));
+    (r, cross(r, f), f)
+}
+
+fn normalise(a: [f64; 3]) -> [f64; 3] {
+    let n = dot(a, a).sqrt();
+    if n > 0.0 { a.map(|c| c / n) } else { a }
+}
+
+/// Per-cell colour and the legend entries.
+fn colours(mesh: &IndexedMesh, by: ColorBy) -> (Vec<Rgb>, Vec<(Rgb, String)>) {
+    let n = mesh.nb_cells();
+    let categorical = |values: Vec<i64>, name: &str| {
+        let mut distinct = values.clone();
+        distinct.sort_unstable();
+        distinct.dedup();
+        let colour_of = |v: i64| PALETTE[distinct.binary_search(&v).unwrap_or(0) % PALETTE.len()];
+        let legend = distinct.iter().take(10).map(|&v| (colour_of(v), format!("{name} {v}"))).collect();
+        (values.iter().map(|&v| colour_of(v)).collect(), legend)
+    };
+    match by {
+        ColorBy::Type => {
+            let mut counts = [0usize; 5];
+            let kinds = [CellKind::Tet, CellKind::Pyramid, CellKind::Prism, CellKind::Hex, CellKind::Polyhedron];
+            mesh.kinds.iter().for_each(|k| counts[kinds.iter().position(|x| x == k).unwrap_or(4)] += 1);
+            let legend = kinds
+                .iter()
+                .zip(counts)
+                .filter(|(_, c)| *c > 0)
+                .map(|(&k, c)| (type_colour(k), format!("{} {c}", k.name())))
+                .collect();
+            (mesh.kinds.iter().map(|&k| type_colour(k)).collect(), legend)
+        }
+        ColorBy::Level => match mesh.cell_array("level") {
+            Some(CellValues::Int(v)) => categorical(v.iter().map(|&x| i64::from(x)).collect(), "level"),
+            _ => categorical(vec![0; n], "level"),
+        },
+        ColorBy::Label => categorical((0..n).map(|i| i64::from(mesh.label(i).unwrap_or(0))).collect(), "label"),
+        ColorBy::Component => categorical(components(mesh).into_iter().map(|c| c as i64).collect(), "component"),
+        ColorBy::Quality => {
+            let q: Vec<Rgb> =
+                (0..n).map(|i| cell_scaled_jacobian(mesh, i).map_or(PALETTE[9], quality_colour)).collect();
+            let legend = [0.0, 0.25, 0.5, 0.75, 1.0]
+                .iter()
+                .map(|&v| (quality_colour(v), format!("scaled jacobian {v:.2}")))
+                .collect();
+            (q, legend)
+        }
+    }
+}
+
+/// Connected components of cells sharing a vertex.
+fn components(mesh: &IndexedMesh) -> Vec<usize> {
+    let mut parent: Vec<usize> = (0..mesh.points.len()).collect();
+    fn find(p: &mut [usize], mut i: usize) -> usize {
+        while p[i] != i {
+            p[i] = p[p[i]];
+            i = p[i];
+        }
+        i
+    }
+    let nodes = |i: usize| mesh.cell_faces(i).unwrap_or_default().into_iter().flatten().collect::<Vec<u32>>();
+    for i in 0..mesh.nb_cells() {
+        let v = nodes(i);
+        for w in v.windows(2) {
+            let (a, b) = (find(&mut parent, w[0] as usize), find(&mut parent, w[1] as usize));
+            parent[a.max(b)] = a.min(b);
+        }
+    }
+    let mut ids: Vec<usize> =
+        (0..mesh.nb_cells()).map(|i| nodes(i).first().map_or(0, |&v| find(&mut parent, v as usize))).collect();
+    let mut distinct = ids.clone();
+    distinct.sort_unstable();
+    distinct.dedup();
+    ids.iter_mut().for_each(|c| *c = distinct.binary_search(c).unwrap_or(0));
+    ids
+}
+
+/// Renders the cells of `mesh` (or its polygons, for a surface).
+pub fn render(mesh: &IndexedMesh, opts: &RenderOptions) -> (Canvas, RenderReport) {
+    let t = Instant::now();
+    let (w, h) = opts.size;
+    let mut canvas = Canvas::new(w, h);
+    let mut report = RenderReport { cells: mesh.nb_cells().max(mesh.nb_polygons()), ..Default::default() };
+    let (right, up, fwd) = camera(opts.view);
+    let light = normalise([0, 1, 2].map(|k| -fwd[k] + 0.6 * up[k] - 0.4 * right[k]));
+    // Cells kept (by the clip) with their faces (outward) and colours.
+    let volume = mesh.is_volume();
+    let (cell_colours, legend) = if volume { colours(mesh, opts.color_by) } else { (Vec::new(), Vec::new()) };
+    let faces_of = |i: usize| -> Vec<Vec<u32>> {
+        if volume {
+            mesh.cell_faces(i)
+                .unwrap_or_default()
+                .into_iter()
+                .map(|mut f| {
+                    f.reverse();
+                    f
+                })
+                .collect()
+        } else {
+            vec![mesh.polygon(i).to_vec()]
+        }
+    };
+    let count = if volume { mesh.nb_cells() } else { mesh.nb_polygons() };
+    let centre_of = |faces: &[Vec<u32>]| {
+        let pts: Vec<[f64; 3]> = faces.iter().flatten().map(|&v| mesh.points[v as usize]).collect();
+        crate::geom::centroid(pts)
+    };
+    let whole = Aabb::of(mesh.points.iter().copied());
+    let kept: Vec<bool> = (0..count)
+        .map(|i| match opts.clip {
+            Some(c) if volume => {
+                let x = centre_of(&faces_of(i))[c.axis];
+                let v = if c.relative { whole.lo[c.axis] + c.value * whole.extent()[c.axis] } else { c.value };
+                if c.below { x < v } else { x > v }
+            }
+            _ => true,
+        })
+        .collect();
+    let bounds = Aabb::of(
+        (0..count)
+            .filter(|&i| kept[i])
+            .flat_map(|i| faces_of(i).into_iter().flatten())
+            .map(|v| mesh.points[v as usize]),
+    );
+    if bounds.lo[0] > bounds.hi[0] {
+        draw_legend(&mut canvas, &legend);
+        report.seconds = t.elapsed().as_secs_f64();
+        return (canvas, report);
+    }
+    let c = bounds.centre();
+    let e = bounds.extent();
+    let radius = (0.5 * dot(e, e).sqrt()).max(f64::MIN_POSITIVE);
+    let scale = 0.92 * (w.min(h) as f64) / (2.0 * radius);
+    let project = |p: [f64; 3]| {
+        let d = sub(p, c);
+        [w as f64 / 2.0 + scale * dot(d, right), h as f64 / 2.0 - scale * dot(d, up), dot(d, fwd)]
+    };
+    let bias = 1e-3 * radius;
+    for i in (0..count).filter(|&i| kept[i]) {
+        let faces = faces_of(i);
+        let cc = centre_of(&faces);
+        let shrink = if volume { opts.shrink } else { 1.0 };
+        let place = |v: u32| {
+            let p = mesh.points[v as usize];
+            [0, 1, 2].map(|k| cc[k] + shrink * (p[k] - cc[k]))
+        };
+        let base = if volume { cell_colours[i] } else { [150, 180, 220] };
+        report.cells_drawn += 1;
+        for f in &faces {
+            let pts: Vec<[f64; 3]> = f.iter().map(|&v| place(v)).collect();
+            let mut n = [0.0; 3];
+            for k in 0..pts.len() {
+                let c = cross(pts[k], pts[(k + 1) % pts.len()]);
+                n = [n[0] + c[0], n[1] + c[1], n[2] + c[2]];
+            }
+            let mut n = normalise(n);
+            if dot(n, fwd) > 0.0 {
+                if volume {
+                    continue; // back face
+                }
+                n = n.map(|x| -x); // surfaces are two-sided
+            }
+            let shade = 0.35 + 0.65 * dot(n, light).max(0.0);
+            let colour = base.map(|x| (f64::from(x) * shade).min(255.0) as u8);
+            let sp: Vec<[f64; 3]> = pts.iter().map(|&p| project(p)).collect();
+            for k in 1..sp.len().saturating_sub(1) {
+                canvas.triangle([sp[0], sp[k], sp[k + 1]], colour);
+                report.triangles += 1;
+            }
+            if opts.edges {
+                for k in 0..sp.len() {
+                    canvas.line(sp[k], sp[(k + 1) % sp.len()], [40, 40, 40], bias);
+                }
+            }
+        }
+    }
+    draw_legend(&mut canvas, &legend);
+    report.seconds = t.elapsed().as_secs_f64();
+    (canvas, report)
+}
+
+fn draw_legend(canvas: &mut Canvas, legend: &[(Rgb, String)]) {
+    let scale = 2;
+    for (k, (colour, text)) in legend.iter().enumerate() {
+        let y = 12 + k * 22;
+        canvas.rect(12, y, 16, 16, [40, 40, 40]);
+        canvas.rect(14, y + 2, 12, 12, *colour);
+        canvas.rect(34, y, text_width(text, scale), 16, [255, 255, 255]);
+        draw_text(canvas, 36, y + 1, text, scale, [20, 20, 20]);
+    }
+}
