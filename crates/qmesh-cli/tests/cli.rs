@@ -117,21 +117,25 @@ fn demo_runs_and_writes_its_files() {
     let dir = temp("demo");
     let (code, out, err) = qmesh(&["demo", "-o", dir.to_str().unwrap()]);
     assert_eq!(code, 0, "{err}");
-    assert!(out.contains("valid = true"));
-    assert!(out.contains("576 volumes (576 hex") && out.contains("1536 volumes (1536 hex"), "{out}");
+    assert!(out.contains("valid true") && !out.contains("valid false"), "{out}");
+    assert!(out.contains("χ Some(0)"), "the torus's marching-cubes surface has genus 1: {out}");
     for f in [
-        "hex_grid.vtk",
-        "tet_grid.mesh",
-        "hex_grid_split.vtk",
-        "hex_grid_boundary.off",
-        "tet_grid.moka",
+        "torus.off",
+        "torus_octree.vtk",
+        "torus_conformal.vtk",
+        "torus_marching_cubes.off",
+        "gyroid.off",
         "hex_grid_subdivided.vtk",
         "tet_grid_to_hex.vtk",
     ] {
         assert!(dir.join(f).is_file(), "{f}");
+        let (w, h, ink) = png_stats(&dir.join(f).with_extension("png"));
+        assert!(w == 1200 && h == 900 && ink > 10_000, "{f}: a picture with something on it");
         let (code, _, err) = qmesh(&["validate", dir.join(f).to_str().unwrap()]);
         assert_eq!(code, 0, "{f}: {err}");
     }
+    let info = json_of(&["info", dir.join("torus_conformal.vtk").to_str().unwrap(), "--json"]);
+    assert_eq!(info["non_conformal_faces"], 0);
 }
 
 #[test]

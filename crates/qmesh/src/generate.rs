@@ -55,3 +55,27 @@ pub fn tet_grid(nx: usize, ny: usize, nz: usize) -> IndexedMesh {
     }
     m
 }
+
+/// A triangulated torus around the z axis (major radius `big`, minor `small`), `nu`
+/// segments around z and `nv` around the tube, outward normals.
+pub fn torus_surface(big: f64, small: f64, nu: usize, nv: usize) -> IndexedMesh {
+    let mut m = IndexedMesh::new();
+    let tau = std::f64::consts::TAU;
+    for i in 0..nu {
+        let u = tau * i as f64 / nu as f64;
+        for j in 0..nv {
+            let v = tau * j as f64 / nv as f64;
+            let r = big + small * v.cos();
+            m.points.push([r * u.cos(), r * u.sin(), small * v.sin()]);
+        }
+    }
+    let id = |i: usize, j: usize| ((i % nu) * nv + j % nv) as u32;
+    for i in 0..nu {
+        for j in 0..nv {
+            let (a, b, c, d) = (id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
+            m.push_polygon(&[a, b, c]);
+            m.push_polygon(&[a, c, d]);
+        }
+    }
+    m
+}
