@@ -19,7 +19,7 @@ pub use extract::{
     ExtractedKinds, boundary_polygons, classify_volume, count_cell_kinds, count_kinds_of, extract, recognise_volume,
 };
 pub use indexed::{CellArray, CellKind, CellValues, HEX_CORNER_BITS, IndexedMesh};
-pub use quality::{QualityByKind, QualitySummary, cell_scaled_jacobian, quality_by_kind};
+pub use quality::{QualityByKind, QualitySummary, cell_scaled_jacobian, quality_by_kind, scaled_jacobians};
 pub use surface::build_surface_map;
 pub use volume::{BuildOptions, BuildReport, build_volume_map, build_volume_map_owned};
 

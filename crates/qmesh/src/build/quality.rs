@@ -18,6 +18,12 @@ pub fn cell_scaled_jacobian(mesh: &IndexedMesh, i: usize) -> Option<f64> {
     })
 }
 
+/// Every cell's scaled Jacobian, 0 for polyhedra (as Verdict reports them), for the
+/// `scaled_jacobian` array of VTK outputs.
+pub fn scaled_jacobians(mesh: &IndexedMesh) -> Vec<f64> {
+    (0..mesh.nb_cells()).map(|i| cell_scaled_jacobian(mesh, i).unwrap_or(0.0)).collect()
+}
+
 /// Summary of one measure over the cells of one kind.
 #[derive(Clone, Debug, PartialEq)]
 pub struct QualitySummary {

@@ -483,7 +483,8 @@ fn polyhedron_stream(
 }
 
 /// Writes an UNSTRUCTURED_GRID (version 4.2 layout) in ASCII or big-endian BINARY,
-/// with a `label` cell array when the mesh has labels.
+/// with cell arrays `cell_type`, `scaled_jacobian` (volumes), `label` when the mesh
+/// has labels, and the mesh's own arrays (`level`, …).
 pub fn write(path: &Path, mesh: &IndexedMesh, binary: bool, w: &mut dyn Write) -> IoResult<()> {
     let io = |e| IoError::io(path, e);
     let cells: Vec<(u8, &[u32])> = if mesh.is_volume() {
@@ -552,6 +553,17 @@ pub fn write(path: &Path, mesh: &IndexedMesh, binary: bool, w: &mut dyn Write) -
     // Cell arrays for ParaView: the VTK type of each cell, and labels when known.
     writeln!(w, "CELL_DATA {}\nSCALARS cell_type int 1\nLOOKUP_TABLE default", cells.len()).map_err(io)?;
     ints(w, &mut cells.iter().map(|c| c.0 as i32), false).map_err(io)?;
+    if mesh.is_volume() && mesh.cell_array("scaled_jacobian").is_none() {
+        writeln!(w, "SCALARS scaled_jacobian double 1\nLOOKUP_TABLE default").map_err(io)?;
+        let q = crate::build::scaled_jacobians(mesh);
+        if binary {
+            let buf: Vec<u8> = q.iter().flat_map(|x| x.to_be_bytes()).collect();
+            w.write_all(&buf).map_err(io)?;
+            writeln!(w).map_err(io)?;
+        } else {
+            q.iter().try_for_each(|x| writeln!(w, "{x}")).map_err(io)?;
+        }
+    }
     if mesh.is_volume() && !mesh.labels.is_empty() {
         writeln!(w, "SCALARS label int 1\nLOOKUP_TABLE default").map_err(io)?;
         ints(w, &mut mesh.labels.iter().copied(), false).map_err(io)?;

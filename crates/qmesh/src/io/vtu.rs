@@ -133,6 +133,10 @@ pub fn write(path: &Path, mesh: &IndexedMesh, w: &mut dyn Write) -> IoResult<()>
     let mut data = Attributes::new();
     let cell_type: Vec<i32> = types.iter().map(|&t| t as i32).collect();
     data.cell.push(Attribute::scalars("cell_type", 1).with_data(IOBuffer::I32(cell_type)));
+    if mesh.is_volume() && mesh.cell_array("scaled_jacobian").is_none() {
+        let q = crate::build::scaled_jacobians(mesh);
+        data.cell.push(Attribute::scalars("scaled_jacobian", 1).with_data(IOBuffer::F64(q)));
+    }
     if mesh.is_volume() && !mesh.labels.is_empty() {
         data.cell.push(Attribute::scalars("label", 1).with_data(IOBuffer::I32(mesh.labels.clone())));
     }
