@@ -15,3 +15,13 @@ pub fn bar(len: u64, what: &str, quiet: bool) -> ProgressBar {
     pb.set_prefix(what.to_string());
     pb
 }
+
+/// A spinner with elapsed time for work without countable steps (hidden like [`bar`]).
+pub fn spinner(what: &str, quiet: bool) -> ProgressBar {
+    let target = if quiet { ProgressDrawTarget::hidden() } else { ProgressDrawTarget::stderr() };
+    let pb = ProgressBar::with_draw_target(None, target);
+    pb.set_style(ProgressStyle::with_template("{spinner} {prefix} {msg} ({elapsed})").expect("valid template"));
+    pb.set_prefix(what.to_string());
+    pb.enable_steady_tick(std::time::Duration::from_millis(120));
+    pb
+}

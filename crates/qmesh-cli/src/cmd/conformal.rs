@@ -33,6 +33,9 @@ pub struct Args {
     /// Print a JSON report.
     #[arg(long)]
     pub json: bool,
+    /// No progress display on stderr.
+    #[arg(short, long)]
+    pub quiet: bool,
     /// Allow the output to be the input file.
     #[arg(long)]
     pub force: bool,
@@ -54,7 +57,9 @@ pub fn run(a: Args) -> Result<ExitCode> {
         Loaded::Indexed(m) if m.is_volume() => m,
         _ => bail!("{}: expected a hexahedral volume mesh", a.input.display()),
     };
+    let pb = crate::progress::spinner("conformal", a.quiet || a.json);
     let (map, r) = conformal(&mesh, &set, !a.no_signatures)?;
+    pb.finish_and_clear();
     let valid = map.is_valid().is_empty();
     let nonconformal = qmesh::build::non_conformal_faces(&map);
     let (cells, _) = extract(&map);

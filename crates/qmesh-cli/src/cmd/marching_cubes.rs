@@ -50,6 +50,9 @@ pub struct Args {
     /// Print a JSON report.
     #[arg(long)]
     pub json: bool,
+    /// No progress display on stderr.
+    #[arg(short, long)]
+    pub quiet: bool,
 }
 
 pub fn run(a: Args) -> Result<ExitCode> {
@@ -66,6 +69,7 @@ pub fn run(a: Args) -> Result<ExitCode> {
         }
         set
     };
+    let pb = crate::progress::spinner("marching cubes", a.quiet || a.json);
     let (polygons, r, hexes, source) = if let Some(field) = &a.field {
         let bytes = std::fs::read(field).with_context(|| format!("reading {}", field.display()))?;
         if bytes.len() % 4 != 0 {
@@ -94,6 +98,7 @@ pub fn run(a: Args) -> Result<ExitCode> {
             marching_cubes_surface(&bvh, a.levels, a.margin, &set).map_err(|e| anyhow::anyhow!("{e}"))?;
         (s, r, hexes, path)
     };
+    pb.finish_and_clear();
     let out = if a.triangulate { triangulate(&polygons) } else { polygons.clone() };
     let (open_edges, chi) = match build_surface_map(&out) {
         Ok((m, _)) => (Some(m.boundary_edges()), Some(m.count_cells().euler_characteristic(2))),

@@ -52,6 +52,9 @@ pub struct Args {
     /// Print a JSON report.
     #[arg(long)]
     pub json: bool,
+    /// No progress display on stderr.
+    #[arg(short, long)]
+    pub quiet: bool,
 }
 
 fn parse_clip(s: &str) -> Result<Clip> {
@@ -133,7 +136,9 @@ pub fn run(a: Args) -> Result<ExitCode> {
         Loaded::Indexed(m) => m,
         Loaded::Map(map) => qmesh::build::extract(&map).0,
     };
+    let pb = crate::progress::spinner("render", a.quiet || a.json);
     let (canvas, r) = render(&mesh, &opts);
+    pb.finish_and_clear();
     write_atomically(&a.output, |w| canvas.write_png(w).map_err(|e| IoError::io(&a.output, e)))?;
     if a.json {
         let j = json!({

@@ -35,6 +35,9 @@ pub struct Args {
     /// Print a JSON report.
     #[arg(long)]
     pub json: bool,
+    /// No progress display on stderr.
+    #[arg(short, long)]
+    pub quiet: bool,
     /// Allow the output to be the input file.
     #[arg(long)]
     pub force: bool,
@@ -58,11 +61,13 @@ pub fn run(a: Args) -> Result<ExitCode> {
     let opts = BuildOptions { fix_orientation: a.input.fix_orientation };
     let mut loaded = load_map(&a.input.input, parse_format(&a.input.format)?, &opts)?;
     let before = loaded.map.count_cells();
+    let pb = crate::progress::spinner("query-replace", a.quiet || a.json);
     let r = query_replace(
         &mut loaded.map,
         &set,
         &ReplaceOptions { split_edges: a.split_edges, flags: a.flags.into(), use_signatures: !a.no_signatures },
     )?;
+    pb.finish_and_clear();
     let violations = loaded.map.is_valid();
     let after = loaded.map.count_cells();
     write_map(&a.output, &loaded.map, None, &WriteOptions::default())?;

@@ -25,6 +25,9 @@ pub struct Args {
     /// Print a JSON report.
     #[arg(long)]
     pub json: bool,
+    /// No progress display on stderr.
+    #[arg(short, long)]
+    pub quiet: bool,
     /// Allow the output to be the input file.
     #[arg(long)]
     pub force: bool,
@@ -39,7 +42,9 @@ pub fn run(a: Args) -> Result<ExitCode> {
     let mut loaded = load_map(&a.input.input, parse_format(&a.input.format)?, &opts)?;
     let before = loaded.map.count_cells();
     let set = super::patterns::load_sets(&a.patterns)?;
+    let pb = crate::progress::spinner("tet2hex", a.quiet || a.json);
     let r = tet_to_hex(&mut loaded.map, set.as_ref(), true)?;
+    pb.finish_and_clear();
     let valid = loaded.map.is_valid().is_empty();
     let (cells, kinds) = extract(&loaded.map);
     let quality = quality_by_kind(&cells);
