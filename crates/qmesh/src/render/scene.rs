@@ -65,6 +65,9 @@ pub struct RenderReport {
     pub seconds: f64,
 }
 
+/// Faces narrower than this on screen get no edge lines.
+const MIN_EDGE_FACE_PIXELS: f64 = 5.0;
+
 const PALETTE: [Rgb; 10] = [
     [78, 121, 167],
     [242, 142, 43],
@@ -270,7 +273,9 @@ pub fn render(mesh: &IndexedMesh, opts: &RenderOptions) -> (Canvas, RenderReport
                 canvas.triangle([sp[0], sp[k], sp[k + 1]], colour);
                 report.triangles += 1;
             }
-            if opts.edges {
+            // Edges of faces a few pixels wide would only darken the picture.
+            let span = sp.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| (lo.min(p[0]), hi.max(p[0])));
+            if opts.edges && span.1 - span.0 > MIN_EDGE_FACE_PIXELS {
                 for k in 0..sp.len() {
                     canvas.line(sp[k], sp[(k + 1) % sp.len()], [40, 40, 40], bias);
                 }
