@@ -201,6 +201,8 @@ fn build_with_points(
     let labelled = mesh.labels.iter().any(|&l| l != mesh.labels[0]);
     if labelled {
         map.enable_labels();
+    } else if let Some(&l) = mesh.labels.first() {
+        map.set_uniform_label(l);
     }
     let mut cells = CellDarts {
         first: Vec::with_capacity(mesh.nb_cells()),

@@ -34,6 +34,9 @@ pub struct CMap3 {
     /// Optional per-dart volume label (Medit reference, gmsh entity): only allocated
     /// when a mesh carries labels.
     pub(super) labels: Option<Vec<i32>>,
+    /// The label of every volume when the input had one label for all (no per-dart
+    /// table then).
+    pub(super) uniform_label: Option<i32>,
 }
 
 impl Default for CMap3 {
@@ -67,6 +70,7 @@ impl CMap3 {
             dimension: 3,
             scratch: LocalScratch::default(),
             labels: None,
+            uniform_label: None,
         }
     }
 
@@ -285,22 +289,28 @@ impl CMap3 {
         self.live -= 1;
     }
 
-    /// Starts keeping a volume label per dart (all 0 initially).
+    /// Starts keeping a volume label per dart (the uniform label, or 0, initially).
     pub fn enable_labels(&mut self) {
         if self.labels.is_none() {
-            self.labels = Some(vec![0; self.betas.len()]);
+            self.labels = Some(vec![self.uniform_label.unwrap_or(0); self.betas.len()]);
         }
+    }
+
+    /// Gives every volume the same label without a per-dart table (a file whose cells
+    /// all carry one reference keeps it, at no memory cost).
+    pub fn set_uniform_label(&mut self, label: i32) {
+        self.uniform_label = Some(label);
     }
 
     /// Whether volume labels are kept.
     pub fn has_labels(&self) -> bool {
-        self.labels.is_some()
+        self.labels.is_some() || self.uniform_label.is_some()
     }
 
     /// Volume label of d's volume (0 when labels are not kept).
     #[inline]
     pub fn label_of(&self, d: Dart) -> i32 {
-        self.labels.as_ref().map_or(0, |l| l[d.idx()])
+        self.labels.as_ref().map_or(self.uniform_label.unwrap_or(0), |l| l[d.idx()])
     }
 
     /// Sets the label of one dart (callers label whole volumes).
