@@ -55,10 +55,10 @@ with tempfile.TemporaryDirectory() as tmp:
     q("tet2hex", data / "tet" / "CAD0.mesh", "-o", t / "tet2hex.vtk", "-q")
     expected = {
         "octree.vtk": {"cell_type", "scaled_jacobian", "level"},
-        "conformal.vtu": {"cell_type", "scaled_jacobian"},
+        "conformal.vtu": {"cell_type", "scaled_jacobian", "pattern_id"},
         "conformal_binary.vtk": {"cell_type", "scaled_jacobian"},
         "labelled.vtu": {"cell_type", "scaled_jacobian", "label"},
-        "tet2hex.vtk": {"cell_type", "scaled_jacobian"},
+        "tet2hex.vtk": {"cell_type", "scaled_jacobian", "pattern_id"},
     }
     for name, arrays in expected.items():
         before = len(messages)

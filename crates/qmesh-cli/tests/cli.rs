@@ -216,6 +216,13 @@ fn octree_pipeline_subdivide_conformal_info() {
     assert_eq!(c["v_patterns"], 325);
     let info = json_of(&["info", &s(&conf), "--json"]);
     assert_eq!((info["non_conformal_faces"].as_u64(), info["inverted_cells"].as_u64()), (Some(0), Some(0)));
+    // Each cell knows the pattern that made it (-1: a hexahedron left as it was).
+    let Ok(qmesh::io::Loaded::Indexed(m)) = qmesh::io::read(&conf, None) else { panic!("conformal output") };
+    let Some(qmesh::build::CellValues::Int(ids)) = m.cell_array("pattern_id") else { panic!("pattern_id array") };
+    let untouched = ids.iter().filter(|&&i| i == -1).count() as u64;
+    let replaced = c["volumes_replaced"].as_u64().unwrap();
+    assert_eq!(untouched, sub["volumes"].as_u64().unwrap() - replaced);
+    assert!(ids.iter().all(|i| (-1..330).contains(i)));
     let t = json_of(&["tet2hex", &s(&tets), "-o", &s(&temp("h.vtk")), "--json"]);
     assert_eq!(t["cell_types"]["hex"], 4 * 48);
 }

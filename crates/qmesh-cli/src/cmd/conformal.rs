@@ -6,7 +6,7 @@ use std::process::ExitCode;
 
 use anyhow::{Result, bail};
 use qmesh::apps::{GeneratedKind, conformal, generated_pattern_set};
-use qmesh::build::extract;
+use qmesh::build::{CellValues, extract, volume_values};
 use qmesh::io::{Loaded, WriteOptions, read, resolve_format, write_indexed};
 use qmesh::pattern::{FlagRule, PatternKind};
 use serde_json::json;
@@ -62,7 +62,8 @@ pub fn run(a: Args) -> Result<ExitCode> {
     pb.finish_and_clear();
     let valid = map.is_valid().is_empty();
     let nonconformal = qmesh::build::non_conformal_faces(&map);
-    let (cells, _) = extract(&map);
+    let (mut cells, _) = extract(&map);
+    cells.set_cell_array("pattern_id", CellValues::Int(volume_values(&map, &r.replace.created_volumes, -1)));
     let quality = qmesh::build::quality_by_kind(&cells);
     write_indexed(&a.output, &cells, out_format, &WriteOptions::default())?;
     let k = &r.kinds;

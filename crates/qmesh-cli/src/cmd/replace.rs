@@ -5,8 +5,8 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use anyhow::{Result, bail};
-use qmesh::build::{BuildOptions, count_cell_kinds};
-use qmesh::io::{WriteOptions, load_map, write_map};
+use qmesh::build::{BuildOptions, CellValues, count_cell_kinds, extract, volume_values};
+use qmesh::io::{Format, WriteOptions, load_map, resolve_format, write_indexed, write_map};
 use qmesh::pattern::{PatternKind, PatternSet, load_pattern_dir};
 use qmesh::replace::{ReplaceOptions, query_replace};
 use serde_json::json;
@@ -70,7 +70,16 @@ pub fn run(a: Args) -> Result<ExitCode> {
     pb.finish_and_clear();
     let violations = loaded.map.is_valid();
     let after = loaded.map.count_cells();
-    write_map(&a.output, &loaded.map, None, &WriteOptions::default())?;
+    match resolve_format(&a.output, None)? {
+        // Volume formats get the cells with the index of the pattern that made each one.
+        f @ (Format::Vtk | Format::Vtu) if loaded.map.dimension() == 3 => {
+            let (mut cells, _) = extract(&loaded.map);
+            let ids = volume_values(&loaded.map, &r.created_volumes, -1);
+            cells.set_cell_array("pattern_id", CellValues::Int(ids));
+            write_indexed(&a.output, &cells, f, &WriteOptions::default())?;
+        }
+        _ => write_map(&a.output, &loaded.map, None, &WriteOptions::default())?,
+    }
     let kinds = count_cell_kinds(&loaded.map);
     if a.json {
         let j = json!({

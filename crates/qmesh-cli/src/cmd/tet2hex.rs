@@ -6,7 +6,7 @@ use std::process::ExitCode;
 
 use anyhow::{Result, bail};
 use qmesh::apps::tet_to_hex;
-use qmesh::build::{BuildOptions, extract, quality_by_kind};
+use qmesh::build::{BuildOptions, CellValues, extract, quality_by_kind, volume_values};
 use qmesh::io::{WriteOptions, load_map, resolve_format, write_indexed};
 use serde_json::json;
 
@@ -46,7 +46,8 @@ pub fn run(a: Args) -> Result<ExitCode> {
     let r = tet_to_hex(&mut loaded.map, set.as_ref(), true)?;
     pb.finish_and_clear();
     let valid = loaded.map.is_valid().is_empty();
-    let (cells, kinds) = extract(&loaded.map);
+    let (mut cells, kinds) = extract(&loaded.map);
+    cells.set_cell_array("pattern_id", CellValues::Int(volume_values(&loaded.map, &r.created_volumes, -1)));
     let quality = quality_by_kind(&cells);
     write_indexed(&a.output, &cells, out_format, &WriteOptions::default())?;
     if a.json {

@@ -236,6 +236,22 @@ fn guess_kind(faces: &[(Dart, usize)]) -> Option<CellKind> {
     }
 }
 
+/// A per-cell array in [`extract`]'s cell order: `value` of the volumes holding the
+/// given darts, `default` for the others (e.g. `pattern_id` from the replacements'
+/// created volumes, −1 where no pattern applied).
+pub fn volume_values(map: &CMap3, tagged: &[(Dart, u32)], default: i32) -> Vec<i32> {
+    let mut tag = vec![default; map.dart_capacity()];
+    let mut walker = OrbitWalker::new();
+    for &(d, v) in tagged {
+        if map.is_live(d) {
+            for &x in walker.collect(map, d, Orbit::Volume) {
+                tag[x.idx()] = v as i32;
+            }
+        }
+    }
+    map.cells(Orbit::Volume).map(|d| tag[d.idx()]).collect()
+}
+
 /// Indexed cells of every volume of a volume map (labels kept when the map has them),
 /// or the polygons of a surface map. Points are the vertex ids in use, renumbered in
 /// increasing id order.

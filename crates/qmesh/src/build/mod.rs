@@ -17,6 +17,7 @@ pub use conformity::non_conformal_faces;
 pub use error::{BuildError, Subject};
 pub use extract::{
     ExtractedKinds, boundary_polygons, classify_volume, count_cell_kinds, count_kinds_of, extract, recognise_volume,
+    volume_values,
 };
 pub use indexed::{CellArray, CellKind, CellValues, HEX_CORNER_BITS, IndexedMesh};
 pub use quality::{QualityByKind, QualitySummary, cell_scaled_jacobian, quality_by_kind, scaled_jacobians};

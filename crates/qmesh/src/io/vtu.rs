@@ -10,7 +10,7 @@ use vtkio::model::{
 };
 
 use super::error::{IoError, IoResult};
-use super::vtk_legacy::{CellList, LABEL_ARRAYS, assemble};
+use super::vtk_legacy::{CellList, INT_ARRAYS, LABEL_ARRAYS, assemble};
 use crate::build::{CellKind, CellValues, IndexedMesh};
 
 fn flat_to_offsets(num_cells: u32, flat: &[u32]) -> Option<CellList> {
@@ -31,12 +31,13 @@ pub fn read(path: &Path, data: &[u8]) -> IoResult<IndexedMesh> {
     let vtk = Vtk::parse_xml(std::io::BufReader::new(data))
         .map_err(|e| IoError::unsupported(path, format!("invalid VTK XML file: {e}")))?;
     let err = |m: String| IoError::unsupported(path, m);
-    let pieces = match vtk.data {
+    let file_pieces = match vtk.data {
         DataSet::UnstructuredGrid { pieces, .. } => pieces,
         _ => return Err(err("only UnstructuredGrid .vtu files are supported".into())),
     };
     let mut all = IndexedMesh::new();
-    for piece in pieces {
+    let mut pieces: Vec<IndexedMesh> = Vec::new();
+    for piece in file_pieces {
         let p: UnstructuredGridPiece = match piece {
             Piece::Inline(p) => *p,
             _ => return Err(err("pieces stored in other files are not supported".into())),
@@ -55,7 +56,7 @@ pub fn read(path: &Path, data: &[u8]) -> IoResult<IndexedMesh> {
             }
             _ => None,
         });
-        let mesh = assemble(
+        let mut mesh = assemble(
             &err,
             points.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect(),
             Some(cells),
@@ -63,8 +64,23 @@ pub fn read(path: &Path, data: &[u8]) -> IoResult<IndexedMesh> {
             Vec::new(),
             labels,
         )?;
-        merge(&mut all, mesh);
+        // Arrays qmesh wrote (one value per cell, no cell skipped) come back as they were.
+        for a in &p.data.cell {
+            if let Attribute::DataArray(DataArray { name, data, .. }) = a
+                && INT_ARRAYS.contains(&name.as_str())
+                && let Some(v) = data.clone().cast_into::<i64>()
+                && v.len() == mesh.nb_cells()
+                && mesh.is_volume()
+            {
+                mesh.set_cell_array(name, CellValues::Int(v.iter().map(|&x| x as i32).collect()));
+            }
+        }
+        pieces.push(mesh);
     }
+    if pieces.len() == 1 {
+        return Ok(pieces.pop().unwrap_or_default());
+    }
+    pieces.into_iter().for_each(|m| merge(&mut all, m));
     Ok(all)
 }
 

@@ -44,6 +44,9 @@ pub struct ReplaceReport {
     pub replace_seconds: f64,
     /// Configurations no pattern matched (2022 §6.4 coverage), most frequent first.
     pub uncovered: Vec<Uncovered>,
+    /// One dart of each volume a v-pattern created, with the pattern's index (for a
+    /// `pattern_id` cell array; see [`crate::build::volume_values`]).
+    pub created_volumes: Vec<(Dart, u32)>,
 }
 
 /// A configuration (face or volume boundary) that no pattern matched.
@@ -158,10 +161,11 @@ pub fn replace_cells(
             let found = find_volume(map, set, flags, d, use_signatures);
             r.query_seconds += t.elapsed().as_secs_f64();
             let t = Instant::now();
-            match found.and_then(|(i, start)| replace_volume(map, &set.patterns[i], start, flags).map(|_| i)) {
-                Some(i) => {
+            match found.and_then(|(i, start)| replace_volume(map, &set.patterns[i], start, flags).map(|c| (i, c))) {
+                Some((i, created)) => {
                     r.matches[i] += 1;
                     r.volumes_replaced += 1;
+                    record_children(map, &created, i as u32, &mut r.created_volumes);
                 }
                 None => {
                     r.unmatched_volumes += 1;
@@ -175,6 +179,19 @@ pub fn replace_cells(
     }
     r.uncovered = coverage.into_list();
     r
+}
+
+/// One dart per volume among the `created` darts of a replacement (every new volume
+/// has an inner face, hence created darts).
+fn record_children(map: &CMap3, created: &[Dart], pattern: u32, out: &mut Vec<(Dart, u32)>) {
+    let mut seen: rustc_hash::FxHashSet<Dart> = rustc_hash::FxHashSet::default();
+    let mut w = crate::cmap::OrbitWalker::new();
+    for &c in created {
+        if seen.insert(c) {
+            seen.extend(w.collect(map, c, Orbit::Volume).iter().copied());
+            out.push((c, pattern));
+        }
+    }
 }
 
 /// The f-pattern matching the face of `d` (either side when it is 3-sewn) and the

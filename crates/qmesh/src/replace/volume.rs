@@ -10,8 +10,9 @@ use crate::signature::{Flags, Surface, word_from};
 /// Inserts the interior of v-pattern `p` into the volume of `target`, whose traversal
 /// from `target` corresponds dart by dart to the pattern boundary's traversal from
 /// `p.start` (the canonical starts of equal signatures, or a direct-test match).
-/// Returns the number of darts added, or None if the traversals do not correspond.
-pub fn replace_volume(map: &mut CMap3, p: &Pattern, target: Dart, flags: Flags) -> Option<usize> {
+/// Returns the darts added (the pattern's interior), or None if the traversals do not
+/// correspond.
+pub fn replace_volume(map: &mut CMap3, p: &Pattern, target: Dart, flags: Flags) -> Option<Vec<Dart>> {
     let pm = &p.map;
     let pw = word_from(pm, Surface::PatternBoundary, Flags::Mark(p.flags), p.start, None)?;
     let tw = word_from(map, Surface::Cell, flags, target, None)?;
@@ -36,5 +37,5 @@ pub fn replace_volume(map: &mut CMap3, p: &Pattern, target: Dart, flags: Flags) 
         map.link(c, 2, rep(pm.beta(x, 2).expect("volumes are closed")));
         map.link(c, 3, copy[&pm.beta(x, 3).expect("interior darts are 3-sewn")]);
     }
-    Some(interior.len())
+    Some(interior.iter().map(|x| copy[x]).collect())
 }
