@@ -82,3 +82,14 @@ fn shared_fields_give_closed_surfaces() {
         eprintln!("{name}: {} polygons, {} triangles, χ {chi}", s.nb_polygons(), triangulate(&s).nb_polygons());
     }
 }
+
+#[test]
+fn bunny_surface_through_its_octree() {
+    let Some(dir) = common::data_dir() else { return };
+    let s = qmesh::io::read_surface(&dir.join("surface/bunny.off"), None).expect("bunny");
+    let bvh = qmesh::geom::TriangleBvh::from_polygons(&s.points, (0..s.nb_polygons()).map(|i| s.polygon(i)));
+    let (surface, r, hexes) = qmesh::apps::marching_cubes_surface(&bvh, 5, 0.01, &mc_pattern_set()).expect("mc");
+    assert_eq!(hexes, 8576);
+    assert_eq!((r.unmatched_faces, r.unmatched_volumes), (0, 0));
+    assert_eq!(topology(&surface), (0, 2), "a closed sphere-like surface");
+}

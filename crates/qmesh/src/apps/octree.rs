@@ -221,14 +221,20 @@ impl Octree {
         (leaves, lattice, hexes)
     }
 
+    /// Position of a point of the finest lattice of `leaves`.
+    fn lattice_position(&self, leaves: &[OctCell]) -> impl Fn([u32; 3]) -> [f64; 3] + Sync + '_ {
+        let fine = leaves.iter().map(|c| c.level).max().unwrap_or(0);
+        let step = self.root.size / f64::from(1u32 << fine);
+        move |q| [0, 1, 2].map(|k| self.root.lo[k] + step * f64::from(q[k]))
+    }
+
     /// Hexahedra of the leaves (VTK order) with their `level` array. Points are shared
     /// through their position on the finest lattice.
     pub fn to_mesh(&self) -> IndexedMesh {
         let (leaves, lattice, hexes) = self.numbering();
-        let fine = leaves.iter().map(|c| c.level).max().unwrap_or(0);
-        let step = self.root.size / f64::from(1u32 << fine);
+        let position = self.lattice_position(&leaves);
         let mut mesh = IndexedMesh::new();
-        mesh.points = lattice.iter().map(|q| [0, 1, 2].map(|k| self.root.lo[k] + step * f64::from(q[k]))).collect();
+        mesh.points = lattice.iter().map(|&q| position(q)).collect();
         for h in &hexes {
             mesh.push_cell(CellKind::Hex, h, None);
         }
@@ -240,7 +246,7 @@ impl Octree {
     /// untouched leaf holding it when there is one (see [`Octree::outside_leaves`]),
     /// else its winding number.
     pub fn point_sides(&self, surface: &TriangleBvh) -> Vec<bool> {
-        let (leaves, _, hexes) = self.numbering();
+        let (leaves, lattice, hexes) = self.numbering();
         let outside: rustc_hash::FxHashSet<OctCell> = self.outside_leaves(surface).into_iter().collect();
         let touched: Vec<bool> = leaves.par_iter().map(|&c| surface.intersects_box(&self.root.cell_box(c))).collect();
         let mut side: Vec<Option<bool>> = vec![None; hexes.iter().flatten().max().map_or(0, |&m| m as usize + 1)];
@@ -248,8 +254,8 @@ impl Octree {
             let inside = !outside.contains(&leaves[i]);
             h.iter().for_each(|&v| side[v as usize] = Some(inside));
         }
-        let mesh_points = self.to_mesh().points;
-        side.par_iter().enumerate().map(|(v, s)| s.unwrap_or_else(|| surface.contains(mesh_points[v]))).collect()
+        let position = self.lattice_position(&leaves);
+        side.par_iter().enumerate().map(|(v, s)| s.unwrap_or_else(|| surface.contains(position(lattice[v])))).collect()
     }
 }
 
