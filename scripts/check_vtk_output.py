@@ -56,7 +56,7 @@ with tempfile.TemporaryDirectory() as tmp:
     expected = {
         "octree.vtk": {"cell_type", "scaled_jacobian", "level"},
         "conformal.vtu": {"cell_type", "scaled_jacobian", "pattern_id"},
-        "conformal_binary.vtk": {"cell_type", "scaled_jacobian"},
+        "conformal_binary.vtk": {"cell_type", "scaled_jacobian", "pattern_id"},
         "labelled.vtu": {"cell_type", "scaled_jacobian", "label"},
         "tet2hex.vtk": {"cell_type", "scaled_jacobian", "pattern_id"},
     }

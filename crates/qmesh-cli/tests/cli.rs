@@ -223,6 +223,13 @@ fn octree_pipeline_subdivide_conformal_info() {
     let replaced = c["volumes_replaced"].as_u64().unwrap();
     assert_eq!(untouched, sub["volumes"].as_u64().unwrap() - replaced);
     assert!(ids.iter().all(|i| (-1..330).contains(i)));
+    // convert keeps the per-cell arrays, cell for cell.
+    let converted = temp("conf.vtu");
+    let (code, _, err) = qmesh(&["convert", &s(&conf), &s(&converted)]);
+    assert_eq!(code, 0, "{err}");
+    let Ok(qmesh::io::Loaded::Indexed(back)) = qmesh::io::read(&converted, None) else { panic!("converted") };
+    assert_eq!(back.cell_array("pattern_id"), m.cell_array("pattern_id"));
+    assert_eq!((back.kinds.clone(), back.conn.clone()), (m.kinds.clone(), m.conn.clone()));
     let t = json_of(&["tet2hex", &s(&tets), "-o", &s(&temp("h.vtk")), "--json"]);
     assert_eq!(t["cell_types"]["hex"], 4 * 48);
 }

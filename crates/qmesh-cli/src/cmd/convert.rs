@@ -5,7 +5,7 @@ use std::process::ExitCode;
 
 use anyhow::{Result, bail};
 use qmesh::build::BuildOptions;
-use qmesh::io::{WriteOptions, load_map, write_map};
+use qmesh::io::{WriteOptions, load_map, write_map_with_arrays};
 
 use super::{InputArgs, parse_format};
 
@@ -41,7 +41,13 @@ pub fn run(a: Args) -> Result<ExitCode> {
             loaded.report.inverted_cells
         );
     }
-    write_map(&a.output, &loaded.map, parse_format(&a.to)?, &WriteOptions { binary: a.binary })?;
+    write_map_with_arrays(
+        &a.output,
+        &loaded.map,
+        &loaded.cell_arrays,
+        parse_format(&a.to)?,
+        &WriteOptions { binary: a.binary },
+    )?;
     let c = loaded.map.count_cells();
     println!(
         "wrote {} ({} vertices, {} volumes, {} faces)",

@@ -173,6 +173,9 @@ pub struct LoadedMap {
     pub warnings: Vec<String>,
     pub read_seconds: f64,
     pub build_seconds: f64,
+    /// The file's per-cell arrays (`level`, `pattern_id`), in file cell order — which
+    /// is the map's volume order, as the builder creates one volume per cell in order.
+    pub cell_arrays: Vec<crate::build::CellArray>,
 }
 
 /// Reads a file and builds its map.
@@ -181,16 +184,18 @@ pub fn load_map(path: &Path, forced: Option<Format>, opts: &BuildOptions) -> IoR
     let loaded = read(path, forced)?;
     let read_seconds = t0.elapsed().as_secs_f64();
     let t1 = Instant::now();
-    let (map, report, warnings) = match loaded {
-        Loaded::Map(m) => (m, BuildReport::default(), Vec::new()),
+    let (map, report, warnings, cell_arrays) = match loaded {
+        Loaded::Map(m) => (m, BuildReport::default(), Vec::new(), Vec::new()),
         Loaded::Indexed(mut mesh) => {
             let warnings = std::mem::take(&mut mesh.warnings);
+            let arrays = std::mem::take(&mut mesh.cell_arrays);
             let lines = (std::mem::take(&mut mesh.cell_lines), std::mem::take(&mut mesh.poly_lines));
             let (m, r) = build_map(mesh, opts).map_err(|cause| locate_build_error(path, cause, &lines))?;
-            (m, r, warnings)
+            (m, r, warnings, arrays)
         }
     };
-    Ok(LoadedMap { map, report, warnings, read_seconds, build_seconds: t1.elapsed().as_secs_f64() })
+    let build_seconds = t1.elapsed().as_secs_f64();
+    Ok(LoadedMap { map, report, warnings, read_seconds, build_seconds, cell_arrays })
 }
 
 /// A builder error, pointed at the source line of the cell it names last when the
@@ -239,6 +244,18 @@ pub fn write_indexed(path: &Path, mesh: &IndexedMesh, format: Format, opts: &Wri
 /// Writes a map (atomically): volume formats get its cells; OFF/OBJ get its boundary
 /// surface (or its faces for a surface map); `.moka` gets the map itself.
 pub fn write_map(path: &Path, map: &CMap3, forced: Option<Format>, opts: &WriteOptions) -> IoResult<()> {
+    write_map_with_arrays(path, map, &[], forced, opts)
+}
+
+/// As [`write_map`], with per-volume arrays (in the map's volume order) attached to the
+/// cells of volume formats; arrays of another length are left out.
+pub fn write_map_with_arrays(
+    path: &Path,
+    map: &CMap3,
+    arrays: &[crate::build::CellArray],
+    forced: Option<Format>,
+    opts: &WriteOptions,
+) -> IoResult<()> {
     let format = resolve_format(path, forced)?;
     match format {
         Format::Moka => write_atomically(path, |w| moka::write(path, map, None, w)),
@@ -246,6 +263,13 @@ pub fn write_map(path: &Path, map: &CMap3, forced: Option<Format>, opts: &WriteO
         Format::Stl | Format::Ply => {
             Err(IoError::unsupported(path, format!("qmesh reads .{} but does not write it", format.name())))
         }
-        _ => write_indexed(path, &extract(map).0, format, opts),
+        _ => {
+            let mut cells = extract(map).0;
+            let n = if cells.is_volume() { cells.nb_cells() } else { usize::MAX };
+            for a in arrays.iter().filter(|a| a.values.len() == n) {
+                cells.set_cell_array(&a.name, a.values.clone());
+            }
+            write_indexed(path, &cells, format, opts)
+        }
     }
 }
