@@ -30,12 +30,8 @@ pub struct Args {
     /// Input format, overriding the extension.
     #[arg(long)]
     pub format: Option<String>,
-    /// Print a JSON report.
-    #[arg(long)]
-    pub json: bool,
-    /// No progress display on stderr.
-    #[arg(short, long)]
-    pub quiet: bool,
+    #[command(flatten)]
+    pub report: super::ReportArgs,
     /// Allow the output to be the input file.
     #[arg(long)]
     pub force: bool,
@@ -57,7 +53,7 @@ pub fn run(a: Args) -> Result<ExitCode> {
         Loaded::Indexed(m) if m.is_volume() => m,
         _ => bail!("{}: expected a hexahedral volume mesh", a.input.display()),
     };
-    let pb = crate::progress::spinner("conformal", a.quiet || a.json);
+    let pb = crate::progress::spinner("conformal", a.report.quiet || a.report.json);
     let (map, r) = conformal(&mesh, &set, !a.no_signatures)?;
     pb.finish_and_clear();
     let valid = map.is_valid().is_empty();
@@ -68,7 +64,7 @@ pub fn run(a: Args) -> Result<ExitCode> {
     write_indexed(&a.output, &cells, out_format, &WriteOptions::default())?;
     let k = &r.kinds;
     let rep = &r.replace;
-    if a.json {
+    if a.report.json {
         let j = json!({
             "input": a.input.display().to_string(),
             "output": a.output.display().to_string(),

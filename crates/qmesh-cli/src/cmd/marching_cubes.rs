@@ -47,12 +47,8 @@ pub struct Args {
     /// Surface input format, overriding the extension.
     #[arg(long)]
     pub format: Option<String>,
-    /// Print a JSON report.
-    #[arg(long)]
-    pub json: bool,
-    /// No progress display on stderr.
-    #[arg(short, long)]
-    pub quiet: bool,
+    #[command(flatten)]
+    pub report: super::ReportArgs,
 }
 
 pub fn run(a: Args) -> Result<ExitCode> {
@@ -69,7 +65,7 @@ pub fn run(a: Args) -> Result<ExitCode> {
         }
         set
     };
-    let pb = crate::progress::spinner("marching cubes", a.quiet || a.json);
+    let pb = crate::progress::spinner("marching cubes", a.report.quiet || a.report.json);
     let (polygons, r, hexes, source) = if let Some(field) = &a.field {
         let bytes = std::fs::read(field).with_context(|| format!("reading {}", field.display()))?;
         if bytes.len() % 4 != 0 {
@@ -107,7 +103,7 @@ pub fn run(a: Args) -> Result<ExitCode> {
     if out.nb_polygons() > 0 {
         write_indexed(&a.output, &out, out_format, &WriteOptions::default())?;
     }
-    if a.json {
+    if a.report.json {
         let j = json!({
             "input": source.display().to_string(),
             "output": a.output.display().to_string(),

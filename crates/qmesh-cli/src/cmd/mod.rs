@@ -32,6 +32,17 @@ pub struct InputArgs {
     pub fix_orientation: bool,
 }
 
+/// How a long command reports: JSON for machines, progress on stderr for people.
+#[derive(clap::Args, Debug, Clone, Copy)]
+pub struct ReportArgs {
+    /// Print a JSON report.
+    #[arg(long)]
+    pub json: bool,
+    /// No progress display on stderr.
+    #[arg(short, long)]
+    pub quiet: bool,
+}
+
 /// Parses a `--format` value.
 pub fn parse_format(s: &Option<String>) -> Result<Option<Format>> {
     s.as_deref()

@@ -49,12 +49,8 @@ pub struct Args {
     /// Input format, overriding the extension.
     #[arg(long)]
     pub format: Option<String>,
-    /// Print a JSON report.
-    #[arg(long)]
-    pub json: bool,
-    /// No progress display on stderr.
-    #[arg(short, long)]
-    pub quiet: bool,
+    #[command(flatten)]
+    pub report: super::ReportArgs,
 }
 
 fn parse_clip(s: &str) -> Result<Clip> {
@@ -136,11 +132,11 @@ pub fn run(a: Args) -> Result<ExitCode> {
         Loaded::Indexed(m) => m,
         Loaded::Map(map) => qmesh::build::extract(&map).0,
     };
-    let pb = crate::progress::spinner("render", a.quiet || a.json);
+    let pb = crate::progress::spinner("render", a.report.quiet || a.report.json);
     let (canvas, r) = render(&mesh, &opts);
     pb.finish_and_clear();
     write_atomically(&a.output, |w| canvas.write_png(w).map_err(|e| IoError::io(&a.output, e)))?;
-    if a.json {
+    if a.report.json {
         let j = json!({
             "input": a.input.display().to_string(), "output": a.output.display().to_string(),
             "cells": r.cells, "cells_drawn": r.cells_drawn, "triangles": r.triangles,

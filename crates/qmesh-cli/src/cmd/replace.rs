@@ -32,12 +32,8 @@ pub struct Args {
     /// Test every pattern directly instead of looking signatures up (2022 §2.3).
     #[arg(long)]
     pub no_signatures: bool,
-    /// Print a JSON report.
-    #[arg(long)]
-    pub json: bool,
-    /// No progress display on stderr.
-    #[arg(short, long)]
-    pub quiet: bool,
+    #[command(flatten)]
+    pub report: super::ReportArgs,
     /// Allow the output to be the input file.
     #[arg(long)]
     pub force: bool,
@@ -61,7 +57,7 @@ pub fn run(a: Args) -> Result<ExitCode> {
     let opts = BuildOptions { fix_orientation: a.input.fix_orientation };
     let mut loaded = load_map(&a.input.input, parse_format(&a.input.format)?, &opts)?;
     let before = loaded.map.count_cells();
-    let pb = crate::progress::spinner("query-replace", a.quiet || a.json);
+    let pb = crate::progress::spinner("query-replace", a.report.quiet || a.report.json);
     let r = query_replace(
         &mut loaded.map,
         &set,
@@ -81,7 +77,7 @@ pub fn run(a: Args) -> Result<ExitCode> {
         _ => write_map(&a.output, &loaded.map, None, &WriteOptions::default())?,
     }
     let kinds = count_cell_kinds(&loaded.map);
-    if a.json {
+    if a.report.json {
         let j = json!({
             "input": a.input.input.display().to_string(),
             "output": a.output.display().to_string(),

@@ -41,12 +41,8 @@ pub struct Args {
     /// Input format, overriding the extension.
     #[arg(long)]
     pub format: Option<String>,
-    /// Print a JSON report.
-    #[arg(long)]
-    pub json: bool,
-    /// No progress bar.
-    #[arg(short, long)]
-    pub quiet: bool,
+    #[command(flatten)]
+    pub report: super::ReportArgs,
 }
 
 pub fn run(a: Args) -> Result<ExitCode> {
@@ -69,14 +65,14 @@ pub fn run(a: Args) -> Result<ExitCode> {
         remove_outside: a.remove_outside,
         use_signatures: !a.no_signatures,
     };
-    let pb = crate::progress::bar(u64::from(a.levels), "subdivide", a.quiet || a.json);
+    let pb = crate::progress::bar(u64::from(a.levels), "subdivide", a.report.quiet || a.report.json);
     let set = super::patterns::load_sets(&a.patterns)?;
     let s = subdivide(&bvh, &opts, set.as_ref(), &|l| pb.set_position(u64::from(l) - 1))?;
     pb.finish_and_clear();
     let validity = s.map.as_ref().map(|m| m.is_valid().is_empty());
     write_indexed(&a.output, &s.mesh, out_format, &WriteOptions::default())?;
     let r = &s.report;
-    if a.json {
+    if a.report.json {
         let j = json!({
             "surface": a.surface.display().to_string(),
             "triangles": bvh.len(),

@@ -22,12 +22,8 @@ pub struct Args {
     /// Pattern folders replacing the generated `tet2hex` set.
     #[arg(long, num_args = 1..)]
     pub patterns: Vec<PathBuf>,
-    /// Print a JSON report.
-    #[arg(long)]
-    pub json: bool,
-    /// No progress display on stderr.
-    #[arg(short, long)]
-    pub quiet: bool,
+    #[command(flatten)]
+    pub report: super::ReportArgs,
     /// Allow the output to be the input file.
     #[arg(long)]
     pub force: bool,
@@ -42,7 +38,7 @@ pub fn run(a: Args) -> Result<ExitCode> {
     let mut loaded = load_map(&a.input.input, parse_format(&a.input.format)?, &opts)?;
     let before = loaded.map.count_cells();
     let set = super::patterns::load_sets(&a.patterns)?;
-    let pb = crate::progress::spinner("tet2hex", a.quiet || a.json);
+    let pb = crate::progress::spinner("tet2hex", a.report.quiet || a.report.json);
     let r = tet_to_hex(&mut loaded.map, set.as_ref(), true)?;
     pb.finish_and_clear();
     let valid = loaded.map.is_valid().is_empty();
@@ -50,7 +46,7 @@ pub fn run(a: Args) -> Result<ExitCode> {
     cells.set_cell_array("pattern_id", CellValues::Int(volume_values(&loaded.map, &r.created_volumes, -1)));
     let quality = quality_by_kind(&cells);
     write_indexed(&a.output, &cells, out_format, &WriteOptions::default())?;
-    if a.json {
+    if a.report.json {
         let j = json!({
             "input": a.input.input.display().to_string(),
             "output": a.output.display().to_string(),
