@@ -9,7 +9,7 @@ use vtkio::model::{
     Version, VertexNumbers, Vtk,
 };
 
-use super::error::{IoError, IoResult};
+use super::error::{IoError, IoResult, Location};
 use super::vtk_legacy::{CellList, INT_ARRAYS, LABEL_ARRAYS, assemble};
 use crate::build::{CellKind, CellValues, IndexedMesh};
 
@@ -26,11 +26,54 @@ fn flat_to_offsets(num_cells: u32, flat: &[u32]) -> Option<CellList> {
     Some(CellList { offsets: offs, conn, lines: Vec::new() })
 }
 
+/// The line where `needle` first occurs.
+fn find_line(data: &[u8], needle: &[u8]) -> Option<usize> {
+    let at = data.windows(needle.len()).position(|w| w == needle)?;
+    Some(1 + data[..at].iter().filter(|&&b| b == b'\n').count())
+}
+
+/// The line of the first XML syntax error (or of an element never closed), or, for a
+/// well-formed file that is not a VTK UnstructuredGrid, of its root element (vtkio's
+/// errors carry no position).
+fn xml_error_line(data: &[u8]) -> usize {
+    use quick_xml::events::Event;
+    let mut reader = quick_xml::Reader::from_reader(data);
+    let mut buf = Vec::new();
+    let (mut root, mut open) = (None, Vec::new());
+    let at = loop {
+        let before = reader.buffer_position() as usize;
+        match reader.read_event_into(&mut buf) {
+            Err(_) => break reader.error_position() as usize,
+            // An element left open at the end: point at its start tag.
+            Ok(Event::Eof) => break open.last().copied().or(root).unwrap_or(0),
+            Ok(Event::Start(_)) => {
+                root.get_or_insert(before);
+                open.push(before);
+            }
+            Ok(Event::Empty(_)) => {
+                root.get_or_insert(before);
+            }
+            Ok(Event::End(_)) => {
+                open.pop();
+            }
+            Ok(_) => {}
+        }
+        buf.clear();
+    };
+    1 + data[..at.min(data.len())].iter().filter(|&&b| b == b'\n').count()
+}
+
 /// Parses a `.vtu` file (inline or appended data, ASCII, base64 or raw, compressed or not).
 pub fn read(path: &Path, data: &[u8]) -> IoResult<IndexedMesh> {
-    let vtk = Vtk::parse_xml(std::io::BufReader::new(data))
-        .map_err(|e| IoError::unsupported(path, format!("invalid VTK XML file: {e}")))?;
-    let err = |m: String| IoError::unsupported(path, m);
+    let vtk = Vtk::parse_xml(std::io::BufReader::new(data)).map_err(|e| IoError::Parse {
+        path: path.into(),
+        at: Location::Line(xml_error_line(data)),
+        msg: format!("expected a VTK XML UnstructuredGrid file: {e}"),
+    })?;
+    // vtkio keeps no positions: point content errors at the <Cells> element (what
+    // they are about), or the file's first line.
+    let cells_line = find_line(data, b"<Cells").unwrap_or(1);
+    let err = |m: String| IoError::Parse { path: path.into(), at: Location::Line(cells_line), msg: m };
     let file_pieces = match vtk.data {
         DataSet::UnstructuredGrid { pieces, .. } => pieces,
         _ => return Err(err("only UnstructuredGrid .vtu files are supported".into())),
