@@ -27,17 +27,19 @@ impl Grid {
 /// Only 3-free faces are examined: cells meeting in part of a face, or at a vertex in
 /// the middle of an edge, always leave unshared faces inside the mesh.
 pub fn non_conformal_faces(map: &CMap3) -> usize {
-    let mut used = vec![false; map.nb_vertex_ids()];
-    // A vertex touching an unshared face lies on unshared faces itself (those of the
-    // finer cells on the other side), so only their vertices are bucketed.
-    map.darts().filter(|&d| map.is_free(d, 3)).for_each(|d| used[map.vertex_of(d) as usize] = true);
-    let ids: Vec<u32> = (0..used.len() as u32).filter(|&v| used[v as usize]).collect();
-    if ids.is_empty() {
+    // One pass over the darts: the unshared ones. A vertex touching an unshared face
+    // lies on unshared faces itself (those of the finer cells on the other side), so
+    // only their vertices are bucketed.
+    let free: Vec<Dart> = map.darts().filter(|&d| map.is_free(d, 3)).collect();
+    if free.is_empty() {
         return 0;
     }
+    let mut ids: Vec<u32> = free.iter().map(|&d| map.vertex_of(d)).collect();
+    ids.sort_unstable();
+    ids.dedup();
     let b = Aabb::of(ids.iter().map(|&v| map.position(v)));
     // One dart per unshared face: the smallest of its cycle.
-    let faces: Vec<Dart> = map.darts().filter(|&d| map.is_free(d, 3) && is_smallest_of_face(map, d)).collect();
+    let faces: Vec<Dart> = free.into_iter().filter(|&d| is_smallest_of_face(map, d)).collect();
     // Buckets about the size of a face (the mean length of the first edges).
     let mean_edge = faces
         .iter()
