@@ -87,3 +87,14 @@ fn octree_of_the_bunny_becomes_conformal() {
     let (plain, _) = qmesh::build::build_map(octree, &Default::default()).expect("octree");
     assert!(non_conformal_faces(&plain) > 100);
 }
+
+#[test]
+fn a_mesh_that_is_not_an_octree_is_refused_with_the_cell() {
+    let mut grid = qmesh::generate::hex_grid(2, 2, 2);
+    grid.points[13][0] += 0.2; // the centre point: all 8 cells stop being boxes
+    let set = generated_pattern_set(GeneratedKind::Transitions, FlagRule::Corners).expect("generated");
+    let err = conformal(&grid, &set, true).expect_err("sheared cells");
+    assert!(err.to_string().contains("cell 0 is not an axis-aligned box"), "{err}");
+    let tets = qmesh::generate::tet_grid(1, 1, 1);
+    assert!(conformal(&tets, &set, true).is_err());
+}

@@ -5,10 +5,11 @@
 
 use std::time::Instant;
 
-use super::box_cells::{flag_box_corners, volume_box};
+use super::box_cells::{flag_box_corners, is_corner, volume_box};
 use super::hanging::{HangingError, HangingReport, insert_hanging_vertices};
-use crate::build::{BuildError, BuildOptions, ExtractedKinds, IndexedMesh, build_map, count_cell_kinds};
+use crate::build::{BuildError, BuildOptions, CellKind, ExtractedKinds, IndexedMesh, build_map, count_cell_kinds};
 use crate::cmap::{CMap3, Dart, MapError, Orbit, OrbitWalker};
+use crate::geom::Aabb;
 use crate::pattern::PatternSet;
 use crate::replace::{ReplaceReport, replace_cells};
 use crate::signature::Flags;
@@ -16,6 +17,10 @@ use crate::signature::Flags;
 /// Why the conformal pipeline stopped.
 #[derive(Debug, thiserror::Error)]
 pub enum ConformalError {
+    #[error(
+        "cell {cell} is not an axis-aligned box hexahedron: conformal transitions need an octree mesh (e.g. from `qmesh subdivide`)"
+    )]
+    NotOctree { cell: usize },
     #[error(transparent)]
     Hanging(#[from] HangingError),
     #[error("the mesh with its hanging vertices does not build: {0}")]
@@ -33,6 +38,29 @@ pub struct ConformalReport {
     pub seconds: f64,
 }
 
+/// Whether cell `c` is an axis-aligned box: a hexahedron whose 8 nodes are the corners
+/// of its bounding box, or a polyhedron with those 8 corners among its nodes (a box
+/// whose hanging vertices are already inserted).
+fn is_box_cell(mesh: &IndexedMesh, c: usize) -> bool {
+    let nodes: Vec<u32> = match mesh.cell(c).0 {
+        CellKind::Hex => mesh.cell(c).1.to_vec(),
+        CellKind::Polyhedron => mesh.cell_faces(c).unwrap_or_default().into_iter().flatten().collect(),
+        _ => return false,
+    };
+    let b = Aabb::of(nodes.iter().map(|&v| mesh.points[v as usize]));
+    let centre = b.centre();
+    let mut corners: Vec<u32> = nodes
+        .iter()
+        .map(|&v| mesh.points[v as usize])
+        .filter(|&p| is_corner(&b, p))
+        .map(|p| (0..3).fold(0, |m, k| m | u32::from(p[k] > centre[k]) << k))
+        .collect();
+    corners.sort_unstable();
+    corners.dedup();
+    corners.len() == 8
+        && (mesh.cell(c).0 != CellKind::Hex || nodes.iter().all(|&v| is_corner(&b, mesh.points[v as usize])))
+}
+
 /// Darts per volume of a plain hexahedron (6 quadrilaterals).
 const PLAIN_HEX_DARTS: usize = 24;
 
@@ -48,6 +76,9 @@ pub fn conformal(
     use_signatures: bool,
 ) -> Result<(CMap3, ConformalReport), ConformalError> {
     let t = Instant::now();
+    if let Some(cell) = (0..mesh.nb_cells()).find(|&c| !is_box_cell(mesh, c)) {
+        return Err(ConformalError::NotOctree { cell });
+    }
     let (cells, hanging) = insert_hanging_vertices(mesh)?;
     let (mut map, _) = build_map(cells, &BuildOptions { fix_orientation: true })?;
     let flag = map.reserve_mark()?;
