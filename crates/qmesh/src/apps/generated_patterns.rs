@@ -153,3 +153,17 @@ pub fn generated_pattern_set(kind: GeneratedKind, rule: FlagRule) -> Result<Patt
     }
     Ok(set)
 }
+
+/// `given`, or else the generated set of `kind` (corner flags), kept in `slot`: for the
+/// applications whose `--patterns` replaces a built-in set.
+pub(crate) fn given_or_generated<'a>(
+    given: Option<&'a PatternSet>,
+    kind: GeneratedKind,
+    slot: &'a mut Option<PatternSet>,
+) -> &'a PatternSet {
+    match given {
+        Some(p) => p,
+        None => slot
+            .insert(generated_pattern_set(kind, FlagRule::Corners).expect("generated pattern sets are valid (tested)")),
+    }
+}

@@ -8,12 +8,12 @@ use std::time::Instant;
 use rayon::prelude::*;
 
 use super::box_cells::{cell_of, flag_box_corners, is_corner, map_cells, volume_box};
-use super::generated_patterns::{GeneratedKind, generated_pattern_set};
+use super::generated_patterns::{GeneratedKind, given_or_generated};
 use super::octree::{Octree, RootBox};
 use crate::build::{BuildOptions, IndexedMesh, build_map};
 use crate::cmap::{CMap3, Dart, MapError, Mark, Orbit, OrbitWalker};
 use crate::geom::{Aabb, TriangleBvh};
-use crate::pattern::{FlagRule, PatternSet};
+use crate::pattern::PatternSet;
 use crate::replace::replace_cells;
 use crate::signature::Flags;
 
@@ -132,15 +132,8 @@ fn subdivide_qr(
     patterns: Option<&PatternSet>,
     progress: &dyn Fn(u8),
 ) -> Result<(CMap3, SubdivideReport), MapError> {
-    let generated;
-    let set = match patterns {
-        Some(p) => p,
-        None => {
-            generated = generated_pattern_set(GeneratedKind::HexSubdivision, FlagRule::Corners)
-                .expect("the generated subdivision patterns are valid (tested)");
-            &generated
-        }
-    };
+    let mut generated = None;
+    let set = given_or_generated(patterns, GeneratedKind::HexSubdivision, &mut generated);
     let mut map = build_map(Octree::new(root).to_mesh(), &BuildOptions::default()).expect("one hexahedron builds").0;
     // Each dart's label is the level of its volume (replacements copy labels to the
     // darts they create; children are relabelled after each refinement).

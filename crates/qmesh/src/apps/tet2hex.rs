@@ -2,7 +2,7 @@
 //! replaced by 3 quadrilaterals, every tetrahedron by 4 hexahedra, with the generated
 //! `tet2hex` patterns.
 
-use super::generated_patterns::{GeneratedKind, generated_pattern_set};
+use super::generated_patterns::{GeneratedKind, given_or_generated};
 use crate::cmap::{CMap3, MapError};
 use crate::pattern::{FlagRule, PatternSet};
 use crate::replace::{ReplaceOptions, ReplaceReport, query_replace};
@@ -18,14 +18,7 @@ pub fn tet_to_hex(
     patterns: Option<&PatternSet>,
     use_signatures: bool,
 ) -> Result<ReplaceReport, MapError> {
-    let generated;
-    let set = match patterns {
-        Some(p) => p,
-        None => {
-            generated = generated_pattern_set(GeneratedKind::Tet2Hex, FlagRule::Corners)
-                .expect("the generated tet2hex patterns are valid (tested)");
-            &generated
-        }
-    };
+    let mut generated = None;
+    let set = given_or_generated(patterns, GeneratedKind::Tet2Hex, &mut generated);
     query_replace(map, set, &ReplaceOptions { split_edges: Some(2), flags: FlagRule::Corners, use_signatures })
 }
