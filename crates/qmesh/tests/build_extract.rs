@@ -85,11 +85,17 @@ fn inverted_cells_are_counted_and_flipped_on_request() {
 }
 
 #[test]
-fn the_map_costs_24_bytes_per_dart_plus_positions() {
-    let (map, _) = build_volume_map(&qmesh::generate::hex_grid(10, 10, 10), &BuildOptions::default()).unwrap();
+fn the_map_costs_20_bytes_per_dart_plus_positions_and_24_with_marks() {
+    let (mut map, _) = build_volume_map(&qmesh::generate::hex_grid(10, 10, 10), &BuildOptions::default()).unwrap();
     assert_eq!(map.nb_darts(), 24_000);
-    // Capacity is exact after building: one slot for ε, 24 B per dart, 24 B per position.
-    assert_eq!(map.heap_bytes(), (map.nb_darts() + 1) * CMap3::BYTES_PER_DART + map.nb_vertex_ids() * 24);
+    // Capacity is exact after building: one slot for ε, 20 B per dart, 24 B per position.
+    assert_eq!(map.bytes_per_dart(), 20);
+    assert_eq!(map.heap_bytes(), (map.nb_darts() + 1) * 20 + map.nb_vertex_ids() * 24);
+    // The first mark allocates the 4-byte mark word of every dart.
+    let m = map.reserve_mark().unwrap();
+    assert_eq!(map.bytes_per_dart(), CMap3::BYTES_PER_DART);
+    assert_eq!(map.heap_bytes(), (map.nb_darts() + 1) * 24 + map.nb_vertex_ids() * 24);
+    map.free_mark(m);
 }
 
 #[test]

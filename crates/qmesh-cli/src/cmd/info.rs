@@ -53,7 +53,7 @@ pub fn run(a: Args) -> Result<ExitCode> {
         "valid": violations.is_empty(),
         "violations": violations.len(),
         "map_bytes": map.heap_bytes(),
-        "bytes_per_dart": CMap3::BYTES_PER_DART,
+        "bytes_per_dart": map.bytes_per_dart(),
         "warnings": loaded.warnings,
         "read_seconds": loaded.read_seconds,
         "build_seconds": loaded.build_seconds,
@@ -72,7 +72,7 @@ pub fn run(a: Args) -> Result<ExitCode> {
         if surface { "surface" } else { "volume" },
         c.darts,
         map.heap_bytes(),
-        CMap3::BYTES_PER_DART
+        map.bytes_per_dart()
     );
     println!(
         "  vertices {}  edges {}  faces {}  volumes {}",

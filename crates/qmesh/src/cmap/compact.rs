@@ -46,10 +46,13 @@ impl CMap3 {
         }
         let mut betas = Vec::with_capacity(next as usize);
         let mut vertex = Vec::with_capacity(next as usize);
-        let mut marks = Vec::with_capacity(next as usize);
+        let has_marks = !self.marks.is_empty();
+        let mut marks = Vec::with_capacity(if has_marks { next as usize } else { 0 });
         betas.push([0; 4]);
-        vertex.push(u32::MAX);
-        marks.push(self.marks[0]);
+        vertex.push(super::storage::DEAD);
+        if has_marks {
+            marks.push(0);
+        }
         for i in 1..n {
             if dmap[i] == 0 {
                 continue;
@@ -57,7 +60,9 @@ impl CMap3 {
             let b = self.betas[i];
             betas.push([dmap[b[0] as usize], dmap[b[1] as usize], dmap[b[2] as usize], dmap[b[3] as usize]]);
             vertex.push(vmap[self.vertex[i] as usize]);
-            marks.push(self.marks[i]);
+            if has_marks {
+                marks.push(self.marks[i]);
+            }
         }
         self.betas = betas;
         self.vertex = vertex;

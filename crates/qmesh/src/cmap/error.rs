@@ -15,7 +15,7 @@ pub enum MapError {
     FaceOnBoundary(Dart),
     #[error("face of dart {0} is folded onto itself (an edge of it is 2-sewn within the removed face)")]
     DegenerateFace(Dart),
-    #[error("all 31 user marks are reserved")]
+    #[error("all 32 marks are reserved")]
     NoMarkLeft,
     #[error("polyhedron is not closed: edge {0}->{1} has no opposite edge {1}->{0}")]
     OpenPolyhedron(u32, u32),

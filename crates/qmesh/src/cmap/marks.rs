@@ -1,12 +1,10 @@
 //! Per-dart marks with a reserve/free API (like CGAL's `get_new_mark`/`free_mark`).
-//! The papers' *flags* (2022 §4.2.2) are one reserved mark.
+//! The papers' *flags* (2022 §4.2.2) are one reserved mark. The mark table is
+//! allocated when a mark is first reserved or set; until then every bit reads clear.
 
 use super::dart::Dart;
 use super::error::MapError;
 use super::storage::CMap3;
-
-/// Bit 31 of the mark word flags deleted darts; bits 0..31 are for users.
-pub(crate) const DELETED_BIT: u32 = 1 << 31;
 
 /// A reserved mark: one bit per dart, obtained with [`CMap3::reserve_mark`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -34,10 +32,10 @@ impl CMap3 {
     /// ```
     ///
     /// # Errors
-    /// [`MapError::NoMarkLeft`] when all 31 user marks are in use.
+    /// [`MapError::NoMarkLeft`] when all 32 marks are in use.
     pub fn reserve_mark(&mut self) -> Result<Mark, MapError> {
         let free = (!self.used_marks).trailing_zeros();
-        if free >= 31 {
+        if free >= 32 {
             return Err(MapError::NoMarkLeft);
         }
         self.used_marks |= 1 << free;
@@ -53,34 +51,47 @@ impl CMap3 {
 
     #[inline]
     pub fn is_marked(&self, d: Dart, m: Mark) -> bool {
-        self.marks[d.idx()] & m.bit() != 0
+        self.mark_bits(d) & m.bit() != 0
     }
 
     #[inline]
     pub fn mark(&mut self, d: Dart, m: Mark) {
-        self.marks[d.idx()] |= m.bit();
+        self.mark_table()[d.idx()] |= m.bit();
     }
 
     #[inline]
     pub fn unmark(&mut self, d: Dart, m: Mark) {
-        self.marks[d.idx()] &= !m.bit();
+        if let Some(w) = self.marks.get_mut(d.idx()) {
+            *w &= !m.bit();
+        }
     }
 
     /// Clears mark `m` on every dart.
     pub fn clear_mark(&mut self, m: Mark) {
         let keep = !m.bit();
-        self.marks.iter_mut().skip(1).for_each(|w| *w &= keep | DELETED_BIT);
+        self.mark_table().iter_mut().for_each(|w| *w &= keep);
     }
 
-    /// All user mark bits of d (bit k = mark k).
+    /// All mark bits of d (bit k = mark k).
     #[inline]
     pub fn mark_bits(&self, d: Dart) -> u32 {
-        self.marks[d.idx()] & !DELETED_BIT
+        self.marks.get(d.idx()).copied().unwrap_or(0)
     }
 
-    /// Replaces all user mark bits of d.
+    /// Replaces all mark bits of d.
     #[inline]
     pub fn set_mark_bits(&mut self, d: Dart, bits: u32) {
-        self.marks[d.idx()] = bits & !DELETED_BIT;
+        if bits != 0 || !self.marks.is_empty() {
+            self.mark_table()[d.idx()] = bits;
+        }
+    }
+
+    /// The mark table, allocated (all clear) on first use.
+    #[inline]
+    fn mark_table(&mut self) -> &mut Vec<u32> {
+        if self.marks.is_empty() {
+            self.marks = vec![0; self.betas.len()];
+        }
+        &mut self.marks
     }
 }

@@ -6,14 +6,14 @@
 
 use super::dart::Dart;
 use super::error::MapError;
-use super::marks::DELETED_BIT;
 use super::orbit::LocalScratch;
 
 /// A 3D combinatorial map (2022 §2.2, 2025 §3.2) with one position per vertex.
 ///
-/// Storage is struct-of-arrays: per dart `[β0, β1, β2, β3]` (16 B), the origin vertex
-/// id (4 B) and 32 mark bits (4 B) — 24 bytes per dart; positions live in their own
-/// table indexed by vertex id. Raw index 0 is the null dart ε.
+/// Storage is struct-of-arrays: per dart `[β0, β1, β2, β3]` (16 B) and the origin vertex
+/// id (4 B; [`DEAD`] marks a deleted slot), plus 32 mark bits (4 B) once a mark is first
+/// used — 20 or 24 bytes per dart; positions live in their own table indexed by vertex
+/// id. Raw index 0 is the null dart ε.
 ///
 /// **Orientation convention.** In a volume (dimension 3), β1 turns *clockwise* around a
 /// face seen from outside its volume, i.e. the right-hand normal of a β1 cycle points
@@ -23,7 +23,10 @@ use super::orbit::LocalScratch;
 #[derive(Clone, Debug)]
 pub struct CMap3 {
     pub(super) betas: Vec<[u32; 4]>,
+    /// Origin vertex id per dart; [`DEAD`] for ε and deleted slots.
     pub(super) vertex: Vec<u32>,
+    /// Mark bits per dart, or empty while no mark was ever used (all bits clear): a
+    /// map that is only read (`qmesh info`) never pays for them.
     pub(super) marks: Vec<u32>,
     pub(super) positions: Vec<[f64; 3]>,
     pub(super) free_darts: Vec<u32>,
@@ -38,6 +41,9 @@ pub struct CMap3 {
     /// table then).
     pub(super) uniform_label: Option<i32>,
 }
+
+/// Vertex id stored for ε and for deleted dart slots.
+pub(crate) const DEAD: u32 = u32::MAX;
 
 impl Default for CMap3 {
     fn default() -> Self {
@@ -56,16 +62,14 @@ impl CMap3 {
         let mut betas = Vec::with_capacity(darts + 1);
         betas.push([0; 4]);
         let mut vertex = Vec::with_capacity(darts + 1);
-        vertex.push(u32::MAX);
-        let mut marks = Vec::with_capacity(darts + 1);
-        marks.push(DELETED_BIT);
+        vertex.push(DEAD);
         CMap3 {
             betas,
             vertex,
-            marks,
+            marks: Vec::new(),
             positions: Vec::with_capacity(vertices),
             free_darts: Vec::new(),
-            used_marks: DELETED_BIT,
+            used_marks: 0,
             live: 0,
             dimension: 3,
             scratch: LocalScratch::default(),
@@ -112,16 +116,16 @@ impl CMap3 {
     /// Whether raw index `d` is a live dart of this map.
     #[inline]
     pub fn is_live(&self, d: Dart) -> bool {
-        self.marks.get(d.idx()).is_some_and(|m| m & DELETED_BIT == 0)
+        self.vertex.get(d.idx()).is_some_and(|&v| v != DEAD)
     }
 
     /// All live darts in increasing index order.
     pub fn darts(&self) -> impl Iterator<Item = Dart> + '_ {
-        self.marks
+        self.vertex
             .iter()
             .enumerate()
             .skip(1)
-            .filter(|(_, m)| *m & DELETED_BIT == 0)
+            .filter(|(_, v)| **v != DEAD)
             .filter_map(|(i, _)| Dart::from_raw(i as u32))
     }
 
@@ -211,6 +215,7 @@ impl CMap3 {
     /// Sets the origin vertex id of one dart (low level: keep vertex orbits uniform).
     #[inline]
     pub fn set_vertex_of(&mut self, d: Dart, v: u32) {
+        debug_assert!(v != DEAD && self.is_live(d), "vertex id of a deleted dart");
         self.vertex[d.idx()] = v;
     }
 
@@ -244,7 +249,9 @@ impl CMap3 {
             let k = i as usize;
             self.betas[k] = [0; 4];
             self.vertex[k] = v;
-            self.marks[k] = 0;
+            if let Some(m) = self.marks.get_mut(k) {
+                *m = 0;
+            }
             if let Some(l) = &mut self.labels {
                 l[k] = 0;
             }
@@ -254,7 +261,9 @@ impl CMap3 {
         assert!(i < u32::MAX as usize, "too many darts for u32 indices");
         self.betas.push([0; 4]);
         self.vertex.push(v);
-        self.marks.push(0);
+        if !self.marks.is_empty() {
+            self.marks.push(0);
+        }
         if let Some(l) = &mut self.labels {
             l.push(0);
         }
@@ -270,7 +279,9 @@ impl CMap3 {
         for (b, v) in block {
             self.betas.push([base + b[0] as u32, base + b[1] as u32, base + b[2] as u32, 0]);
             self.vertex.push(v);
-            self.marks.push(0);
+        }
+        if !self.marks.is_empty() {
+            self.marks.resize(self.betas.len(), 0);
         }
         if let Some(l) = &mut self.labels {
             l.resize(l.len() + n, 0);
@@ -284,7 +295,10 @@ impl CMap3 {
     pub fn delete_dart(&mut self, d: Dart) {
         debug_assert!(self.is_live(d), "deleting {d:?} twice");
         self.betas[d.idx()] = [0; 4];
-        self.marks[d.idx()] = DELETED_BIT;
+        self.vertex[d.idx()] = DEAD;
+        if let Some(m) = self.marks.get_mut(d.idx()) {
+            *m = 0;
+        }
         self.free_darts.push(d.raw());
         self.live -= 1;
     }
@@ -331,8 +345,14 @@ impl CMap3 {
             + self.labels.as_ref().map_or(0, |l| l.capacity() * 4)
     }
 
-    /// Bytes per dart of the per-dart arrays (betas + vertex + marks).
+    /// Bytes per dart of the per-dart arrays at most (betas + vertex + marks).
     pub const BYTES_PER_DART: usize = 16 + 4 + 4;
+
+    /// Bytes per dart of this map's per-dart arrays: 20, or 24 once marks are in use
+    /// (labels, when kept, add 4 more).
+    pub fn bytes_per_dart(&self) -> usize {
+        16 + 4 + if self.marks.is_empty() { 0 } else { 4 } + if self.labels.is_some() { 4 } else { 0 }
+    }
 
     pub(super) fn err_if_dead(&self, d: Dart) -> Result<(), MapError> {
         if self.is_live(d) { Ok(()) } else { Err(MapError::DeadDart(d)) }
