@@ -2,6 +2,7 @@
 //! topology (nodes put back in VTK order), any other volume as a VTK polyhedron.
 
 use super::indexed::{CellKind, IndexedMesh};
+use super::recognise::standard_cell;
 use crate::cmap::{CMap3, Dart, Orbit, OrbitWalker};
 
 /// Counts of the cell kinds found by [`extract`].
@@ -26,13 +27,6 @@ impl ExtractedKinds {
     }
 }
 
-/// The vertex id at the far end of the side edge leaving the origin of `d`
-/// (the node "above" it when d's face is the base of a prism-like cell).
-fn above(map: &CMap3, d: Dart) -> u32 {
-    let side = map.next(map.beta(d, 2).expect("closed volume"));
-    map.vertex_of(map.next(side))
-}
-
 fn cycle(map: &CMap3, d: Dart, n: usize) -> Vec<Dart> {
     let mut out = Vec::with_capacity(n);
     let mut x = d;
@@ -43,72 +37,13 @@ fn cycle(map: &CMap3, d: Dart, n: usize) -> Vec<Dart> {
     out
 }
 
-/// Smallest raw index on the β1 cycle of `x`: an identifier of its face.
-fn face_id(map: &CMap3, x: Dart) -> u32 {
-    let (mut m, mut y) = (x.raw(), map.next(x));
-    while y != x {
-        m = m.min(y.raw());
-        y = map.next(y);
-    }
-    m
-}
-
-/// The faces (a dart and the length of each) of the volume of `d` when it has at most
-/// 6 faces of at most 4 darts (enough for every standard cell), found face by face
-/// through β2 without hashing; None for larger volumes.
-fn small_volume_faces(map: &CMap3, d: Dart) -> Option<SmallFaces> {
-    let mut ids = [0u32; 6];
-    let mut faces = SmallFaces { faces: [(d, 0); 6], len: 1 };
-    faces.faces[0] = (d, map.face_degree(d));
-    ids[0] = face_id(map, d);
-    let mut k = 0;
-    while k < faces.len {
-        let (x0, n) = faces.faces[k];
-        k += 1;
-        if n > 4 {
-            return None;
-        }
-        let mut x = x0;
-        for _ in 0..n {
-            let o = map.beta(x, 2)?;
-            let id = face_id(map, o);
-            if !ids[..faces.len].contains(&id) {
-                if faces.len == 6 {
-                    return None;
-                }
-                ids[faces.len] = id;
-                faces.faces[faces.len] = (o, map.face_degree(o));
-                faces.len += 1;
-            }
-            x = map.next(x);
-        }
-    }
-    Some(faces)
-}
-
-/// Up to six faces (a dart and a length each), stored inline.
-struct SmallFaces {
-    faces: [(Dart, usize); 6],
-    len: usize,
-}
-
-impl std::ops::Deref for SmallFaces {
-    type Target = [(Dart, usize)];
-    fn deref(&self) -> &[(Dart, usize)] {
-        &self.faces[..self.len]
-    }
-}
-
 /// Recognises the volume of `d` and returns its kind and nodes (VTK order), or for any
 /// other volume the VTK polyhedron face stream (outward faces). `walker` is scratch.
 pub fn recognise_volume(map: &CMap3, d: Dart, walker: &mut OrbitWalker) -> (CellKind, Vec<u32>) {
-    if let Some(faces) = small_volume_faces(map, d)
-        && let Some(kind) = guess_kind(&faces)
-        && let Some(nodes) = standard_nodes(map, kind, &faces)
-    {
-        return (kind, nodes);
+    match standard_cell(map, d) {
+        Some((kind, nodes)) => (kind.into(), nodes[..kind.nodes()].to_vec()),
+        None => polyhedron_stream(map, d, walker),
     }
-    polyhedron_stream(map, d, walker)
 }
 
 /// The VTK polyhedron face stream of any volume (faces reversed to point outward).
@@ -129,55 +64,6 @@ fn polyhedron_stream(map: &CMap3, d: Dart, walker: &mut OrbitWalker) -> (CellKin
         }
     }
     (CellKind::Polyhedron, stream)
-}
-
-/// Nodes in VTK order for a volume whose face counts match `kind`, checked against the
-/// kind's face table; None when the topology is not that of the standard cell.
-fn standard_nodes(map: &CMap3, kind: CellKind, faces: &[(Dart, usize)]) -> Option<Vec<u32>> {
-    let base_len = match kind {
-        CellKind::Tet | CellKind::Prism => 3,
-        _ => 4,
-    };
-    let base = faces.iter().find(|f| f.1 == base_len)?.0;
-    let b = cycle(map, base, base_len);
-    let ids: Vec<u32> = b.iter().map(|&x| map.vertex_of(x)).collect();
-    let nodes: Vec<u32> = match kind {
-        CellKind::Tet | CellKind::Pyramid => {
-            let mut n = ids.clone();
-            n.push(above(map, b[0]));
-            n
-        }
-        CellKind::Hex => {
-            let mut n = ids.clone();
-            n.extend(b.iter().map(|&x| above(map, x)));
-            n
-        }
-        CellKind::Prism => {
-            // VTK's 0-1-2 normal points away from 3-4-5: reverse the inward base cycle.
-            let order = [b[0], b[2], b[1]];
-            let mut n: Vec<u32> = order.iter().map(|&x| map.vertex_of(x)).collect();
-            n.extend(order.iter().map(|&x| above(map, x)));
-            n
-        }
-        CellKind::Polyhedron => return None,
-    };
-    let distinct = nodes.iter().enumerate().all(|(i, v)| !nodes[..i].contains(v));
-    // Every face of the table must be a face of the volume (as a vertex cycle).
-    let has_face = |f: &[usize]| {
-        faces.iter().filter(|g| g.1 == f.len()).any(|&(g, n)| {
-            let mut x = g;
-            (0..n).any(|_| {
-                let mut y = x;
-                x = map.next(x);
-                f.iter().all(|&k| {
-                    let ok = map.vertex_of(y) == nodes[k];
-                    y = map.next(y);
-                    ok
-                })
-            })
-        })
-    };
-    (distinct && kind.face_table().iter().all(|f| has_face(f))).then_some(nodes)
 }
 
 /// How many volumes of each kind the map holds.
@@ -216,24 +102,7 @@ pub fn count_kinds_of(map: &CMap3, reps: &[Dart]) -> ExtractedKinds {
 /// The kind of the volume of `d` (as [`recognise_volume`], without building its node
 /// list or face stream).
 pub fn classify_volume(map: &CMap3, d: Dart) -> CellKind {
-    let Some(faces) = small_volume_faces(map, d) else { return CellKind::Polyhedron };
-    match guess_kind(&faces) {
-        Some(kind) if standard_nodes(map, kind, &faces).is_some() => kind,
-        _ => CellKind::Polyhedron,
-    }
-}
-
-/// The standard kind whose face counts match, if any.
-fn guess_kind(faces: &[(Dart, usize)]) -> Option<CellKind> {
-    let count = |k: usize| faces.iter().filter(|f| f.1 == k).count();
-    let darts: usize = faces.iter().map(|f| f.1).sum();
-    match (faces.len(), count(3), count(4), darts) {
-        (4, 4, 0, 12) => Some(CellKind::Tet),
-        (5, 4, 1, 16) => Some(CellKind::Pyramid),
-        (5, 2, 3, 18) => Some(CellKind::Prism),
-        (6, 0, 6, 24) => Some(CellKind::Hex),
-        _ => None,
-    }
+    standard_cell(map, d).map_or(CellKind::Polyhedron, |(kind, _)| kind.into())
 }
 
 /// A per-cell array in [`extract`]'s cell order: `value` of the volumes holding the

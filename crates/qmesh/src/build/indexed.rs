@@ -13,6 +13,17 @@ pub enum CellKind {
     Polyhedron,
 }
 
+impl From<Standard> for CellKind {
+    fn from(s: Standard) -> Self {
+        match s {
+            Standard::Tet => CellKind::Tet,
+            Standard::Pyramid => CellKind::Pyramid,
+            Standard::Prism => CellKind::Prism,
+            Standard::Hex => CellKind::Hex,
+        }
+    }
+}
+
 impl CellKind {
     /// Number of nodes of a fixed-size cell (None for polyhedra).
     pub fn nodes(self) -> Option<usize> {

@@ -10,6 +10,7 @@ mod error;
 mod extract;
 mod indexed;
 mod quality;
+mod recognise;
 mod surface;
 mod volume;
 
@@ -21,6 +22,7 @@ pub use extract::{
 };
 pub use indexed::{CellArray, CellKind, CellValues, HEX_CORNER_BITS, IndexedMesh};
 pub use quality::{QualityByKind, QualitySummary, cell_scaled_jacobian, quality_by_kind, scaled_jacobians};
+pub use recognise::{StandardNodes, standard_cell};
 pub use surface::build_surface_map;
 pub use volume::{BuildOptions, BuildReport, build_volume_map, build_volume_map_owned};
 
