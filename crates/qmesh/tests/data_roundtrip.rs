@@ -9,6 +9,7 @@ use qmesh::io::{Format, Loaded, WriteOptions, load_map, read, write_indexed, wri
 
 fn signature(m: &CMap3) -> (usize, usize, usize, usize, usize, i64, [usize; 5]) {
     let c = m.count_cells();
+    assert_eq!(c, m.census_reference().counts, "the parallel census agrees with the census by definition");
     let k = count_cell_kinds(m);
     (
         c.darts,

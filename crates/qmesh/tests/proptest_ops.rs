@@ -121,6 +121,10 @@ proptest! {
             apply(&mut m, op);
             let v = m.is_valid();
             prop_assert!(v.is_empty(), "after {:?}: {}", op, v.iter().map(|x| x.to_string()).collect::<Vec<_>>().join("; "));
+            // The parallel census agrees with the census by definition.
+            let (fast, reference) = (m.census(), m.census_reference());
+            prop_assert_eq!(fast.counts, reference.counts, "after {:?}", op);
+            prop_assert_eq!(fast.volume_reps.len(), reference.volume_reps.len());
         }
         let before = m.count_cells();
         m.compact();

@@ -6,6 +6,7 @@
 //! validity themselves.
 
 mod bitset;
+mod census;
 mod compact;
 mod constructors;
 mod counts;

@@ -58,7 +58,8 @@ impl Visited for FxHashSet<u32> {
 /// cell are stored together, so this keeps the walk in cache.
 #[inline]
 fn neighbours(map: &CMap3, d: u32, orbit: Orbit, mut push: impl FnMut(u32)) {
-    let b = |x: u32, i: usize| if x == 0 { 0 } else { map.beta_raw(x, i) };
+    // ε (index 0) has all betas ε, so compositions through it need no test.
+    let b = |x: u32, i: usize| map.beta_raw(x, i);
     match orbit {
         Orbit::Vertex => {
             push(b(b(d, 0), 3));
@@ -104,8 +105,83 @@ fn neighbours(map: &CMap3, d: u32, orbit: Orbit, mut push: impl FnMut(u32)) {
     }
 }
 
-/// The traversal: depth-first from `start`, calling `visit` once per dart of the orbit.
-/// `seen` keeps the visited darts (callers decide when to clear it); `stack` is reused.
+/// The permutation whose cycles an orbit is made of, when it has one: β1 for orbits
+/// with β1 among their generators, β1∘β2 for the vertex orbits. The traversal walks
+/// such a cycle in one go and only stacks the darts the other generators lead to.
+#[derive(Clone, Copy)]
+enum Cycle {
+    Beta1,
+    Beta1Beta2,
+}
+
+impl Cycle {
+    fn of(orbit: Orbit) -> Option<Cycle> {
+        match orbit {
+            Orbit::Face | Orbit::HalfFace | Orbit::Volume | Orbit::Component => Some(Cycle::Beta1),
+            Orbit::Betas(mask) if mask & 0b11 != 0 => Some(Cycle::Beta1),
+            Orbit::Vertex | Orbit::VolumeVertex => Some(Cycle::Beta1Beta2),
+            Orbit::Edge | Orbit::Betas(_) => None,
+        }
+    }
+
+    #[inline]
+    fn forward(self, map: &CMap3, d: u32) -> u32 {
+        match self {
+            Cycle::Beta1 => map.beta_raw(d, 1),
+            Cycle::Beta1Beta2 => map.beta_raw(map.beta_raw(d, 2), 1),
+        }
+    }
+
+    #[inline]
+    fn backward(self, map: &CMap3, d: u32) -> u32 {
+        match self {
+            Cycle::Beta1 => map.beta_raw(d, 0),
+            Cycle::Beta1Beta2 => map.beta_raw(map.beta_raw(d, 0), 2),
+        }
+    }
+}
+
+/// Calls `push` with the neighbours of `d` under the generators of `orbit` other than
+/// its cycle permutation (and that permutation's inverse).
+#[inline]
+fn other_neighbours(map: &CMap3, d: u32, orbit: Orbit, mut push: impl FnMut(u32)) {
+    let b = |x: u32, i: usize| map.beta_raw(x, i);
+    match orbit {
+        Orbit::Vertex => {
+            push(b(b(d, 3), 1));
+            push(b(b(d, 0), 3));
+        }
+        Orbit::Face => push(b(d, 3)),
+        Orbit::Volume => push(b(d, 2)),
+        Orbit::Component => {
+            push(b(d, 3));
+            push(b(d, 2));
+        }
+        Orbit::Betas(mask) => {
+            for i in [3, 2] {
+                if mask & (1 << i) != 0 {
+                    push(b(d, i));
+                }
+            }
+        }
+        Orbit::HalfFace | Orbit::VolumeVertex | Orbit::Edge => {}
+    }
+}
+
+/// Stacks `n` unless it is ε or already seen (marking it seen).
+#[inline]
+fn push_unseen<V: Visited>(seen: &mut V, stack: &mut Vec<u32>, n: u32) {
+    if n != 0 && seen.visit(n) {
+        stack.push(n);
+    }
+}
+
+/// The traversal: from `start`, calling `visit` once per dart of the orbit. `seen`
+/// keeps the visited darts (callers decide when to clear it); `stack` is reused.
+///
+/// Cycles of the orbit's permutation (β1, or β1∘β2 around a vertex) are walked both
+/// ways from each dart that enters them until a visited dart or ε; the other
+/// generators' neighbours are stacked. Each dart is visited once and `start` first.
 pub fn walk_orbit<V: Visited>(
     map: &CMap3,
     start: Dart,
@@ -118,14 +194,31 @@ pub fn walk_orbit<V: Visited>(
     if !seen.visit(start.raw()) {
         return;
     }
+    let Some(cycle) = Cycle::of(orbit) else {
+        stack.push(start.raw());
+        while let Some(d) = stack.pop() {
+            visit(Dart::from_raw(d).expect("stack holds no ε"));
+            neighbours(map, d, orbit, |n| push_unseen(seen, stack, n));
+        }
+        return;
+    };
     stack.push(start.raw());
-    while let Some(d) = stack.pop() {
-        visit(Dart::from_raw(d).expect("stack holds no ε"));
-        neighbours(map, d, orbit, |n| {
-            if n != 0 && seen.visit(n) {
-                stack.push(n);
+    while let Some(entry) = stack.pop() {
+        let mut x = entry;
+        loop {
+            visit(Dart::from_raw(x).expect("walks hold no ε"));
+            other_neighbours(map, x, orbit, |n| push_unseen(seen, stack, n));
+            x = cycle.forward(map, x);
+            if x == 0 || !seen.visit(x) {
+                break;
             }
-        });
+        }
+        let mut y = cycle.backward(map, entry);
+        while y != 0 && seen.visit(y) {
+            visit(Dart::from_raw(y).expect("walks hold no ε"));
+            other_neighbours(map, y, orbit, |n| push_unseen(seen, stack, n));
+            y = cycle.backward(map, y);
+        }
     }
 }
 
@@ -229,5 +322,84 @@ impl CMap3 {
         let r = f(self, &mut w);
         self.scratch = w;
         r
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::build::{BuildOptions, build_surface_map, build_volume_map};
+    use crate::generate::{hex_grid, tet_grid, torus_surface};
+
+    /// The orbit by its definition: every generator and its inverse, one dart at a time.
+    fn by_definition(map: &CMap3, d: Dart, orbit: Orbit) -> Vec<u32> {
+        let mut seen = FxHashSet::default();
+        let mut stack = vec![d.raw()];
+        seen.insert(d.raw());
+        while let Some(x) = stack.pop() {
+            neighbours(map, x, orbit, |n| {
+                if n != 0 && seen.insert(n) {
+                    stack.push(n);
+                }
+            });
+        }
+        let mut v: Vec<u32> = seen.into_iter().collect();
+        v.sort_unstable();
+        v
+    }
+
+    fn check_every_orbit(map: &CMap3) {
+        let kinds = [
+            Orbit::Vertex,
+            Orbit::Edge,
+            Orbit::Face,
+            Orbit::HalfFace,
+            Orbit::Volume,
+            Orbit::Component,
+            Orbit::VolumeVertex,
+            Orbit::Betas(0b1010),
+            Orbit::Betas(0b0110),
+        ];
+        let mut walker = OrbitWalker::new();
+        for d in map.darts() {
+            for orbit in kinds {
+                let walked = walker.collect(map, d, orbit);
+                assert_eq!(walked[0], d, "the start comes first");
+                let mut w: Vec<u32> = walked.iter().map(|x| x.raw()).collect();
+                w.sort_unstable();
+                let n = w.len();
+                w.dedup();
+                assert_eq!(w.len(), n, "{orbit:?} from {d:?} visits a dart twice");
+                assert_eq!(w, by_definition(map, d, orbit), "{orbit:?} from {d:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn cycle_walks_equal_the_orbits_by_definition_on_closed_open_and_rewired_maps() {
+        let opts = BuildOptions::default();
+        let (mut hexes, _) = build_volume_map(&hex_grid(3, 2, 1), &opts).unwrap();
+        check_every_orbit(&hexes);
+        // Open boundary where a volume was removed, split edges.
+        let first = hexes.darts().next().unwrap();
+        hexes.remove_volume(first).unwrap();
+        let some = hexes.darts().nth(40).unwrap();
+        hexes.split_edge(some, 3).unwrap();
+        check_every_orbit(&hexes);
+        // A face cut open in the middle of a rewiring (β1 free at one dart).
+        let d = hexes.darts().nth(7).unwrap();
+        hexes.unlink(d, 1);
+        check_every_orbit(&hexes);
+        let (tets, _) = build_volume_map(&tet_grid(2, 1, 1), &opts).unwrap();
+        check_every_orbit(&tets);
+        // A surface with a border: β2 free.
+        let torus = torus_surface(2.0, 0.5, 6, 4);
+        let mut open = crate::build::IndexedMesh::new();
+        open.points = torus.points.clone();
+        for p in 0..20 {
+            open.push_polygon(&torus.poly_conn[torus.poly_offsets[p]..torus.poly_offsets[p + 1]]);
+        }
+        let (surface, _) = build_surface_map(&open).unwrap();
+        check_every_orbit(&surface);
     }
 }

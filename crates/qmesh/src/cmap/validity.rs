@@ -80,7 +80,7 @@ impl CMap3 {
     /// same, in dart order, whatever the number of threads.
     pub fn is_valid(&self) -> Vec<Violation> {
         let mut out = self.local_violations_all();
-        if out.is_empty() {
+        if out.is_empty() && self.has_shared_vertex_id() {
             out = self.vertex_census().1;
         }
         out
@@ -117,7 +117,7 @@ impl CMap3 {
     }
 
     /// The checks that only look at a dart and its neighbours, for raw indices in `range`.
-    fn local_violations(&self, range: std::ops::Range<usize>) -> Vec<Violation> {
+    pub(super) fn local_violations(&self, range: std::ops::Range<usize>) -> Vec<Violation> {
         let mut out = Vec::new();
         let n = self.dart_capacity() as u32;
         let live = |x: u32| x != 0 && x < n && Dart::from_raw(x).is_some_and(|d| self.is_live(d));
