@@ -245,7 +245,7 @@ impl CMap3 {
         let l = kind.layout();
         if self.free_darts.is_empty() {
             // Fast path: append one contiguous block with all its links at once.
-            let base = self.append_darts(l.local_betas.iter().zip(&l.origin).map(|(b, &o)| (*b, nodes[o as usize])));
+            let base = self.append_cell(l, nodes);
             for (k, slot) in out.iter_mut().take(l.origin.len()).enumerate() {
                 *slot = base + k as u32;
             }

@@ -12,6 +12,7 @@ mod constructors;
 mod counts;
 mod dart;
 mod error;
+mod huge_pages;
 mod marks;
 mod orbit;
 mod orientation;

@@ -4,8 +4,10 @@
 //! (`beta`, `link`, `unlink`, `create_dart`, `delete_dart`, `vertex_of`, marks), so the
 //! layout can change without touching the algorithms above it (GUIDE §2).
 
+use super::constructors::Layout;
 use super::dart::Dart;
 use super::error::MapError;
+use super::huge_pages::advise_huge_pages;
 use super::orbit::LocalScratch;
 
 /// A 3D combinatorial map (2022 §2.2, 2025 §3.2) with one position per vertex.
@@ -60,8 +62,10 @@ impl CMap3 {
     /// An empty volume map with room for `darts` darts and `vertices` vertices.
     pub fn with_capacity(darts: usize, vertices: usize) -> Self {
         let mut betas = Vec::with_capacity(darts + 1);
+        advise_huge_pages(&betas);
         betas.push([0; 4]);
         let mut vertex = Vec::with_capacity(darts + 1);
+        advise_huge_pages(&vertex);
         vertex.push(DEAD);
         CMap3 {
             betas,
@@ -270,16 +274,20 @@ impl CMap3 {
         Dart::from_raw(i as u32).expect("index 0 is never pushed")
     }
 
-    /// Appends a block of new darts given by local links (indices within the block) and
-    /// origin vertices; returns the raw index of the first one. β3 is free.
-    pub(super) fn append_darts(&mut self, block: impl ExactSizeIterator<Item = ([u8; 3], u32)>) -> u32 {
+    /// Appends the darts of one standard cell laid out as `layout` on `nodes`; returns
+    /// the raw index of the first one. β3 is free. The block is assembled on the stack
+    /// and copied in one go (this is the builder's inner loop).
+    pub(super) fn append_cell(&mut self, layout: &Layout, nodes: &[u32]) -> u32 {
         let base = self.betas.len() as u32;
-        assert!((base as usize) + block.len() < u32::MAX as usize, "too many darts for u32 indices");
-        let n = block.len();
-        for (b, v) in block {
-            self.betas.push([base + b[0] as u32, base + b[1] as u32, base + b[2] as u32, 0]);
-            self.vertex.push(v);
+        let n = layout.origin.len();
+        assert!((base as usize) + n < u32::MAX as usize, "too many darts for u32 indices");
+        let (mut betas, mut vertex) = ([[0u32; 4]; 24], [0u32; 24]);
+        for (k, (b, &o)) in layout.local_betas.iter().zip(&layout.origin).enumerate() {
+            betas[k] = [base + b[0] as u32, base + b[1] as u32, base + b[2] as u32, 0];
+            vertex[k] = nodes[o as usize];
         }
+        self.betas.extend_from_slice(&betas[..n]);
+        self.vertex.extend_from_slice(&vertex[..n]);
         if !self.marks.is_empty() {
             self.marks.resize(self.betas.len(), 0);
         }
