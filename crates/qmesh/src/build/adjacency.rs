@@ -1,4 +1,5 @@
-//! Vertex → cells incidence (compressed rows), used to find the cells sharing a face.
+//! Vertex → cells incidence (compressed rows), used to find the cells sharing a face,
+//! and the node checks that precede building.
 
 use super::error::BuildError;
 use super::indexed::{CellKind, IndexedMesh};
@@ -10,33 +11,46 @@ pub struct VertexCells {
     cells: Vec<u32>,
 }
 
+/// Checks every cell's nodes (in range, not repeated, polyhedron streams well formed)
+/// before any dart is created.
+pub fn check_cells(mesh: &IndexedMesh, np: usize) -> Result<(), BuildError> {
+    let mut nodes = Vec::new();
+    for c in 0..mesh.nb_cells() {
+        cell_nodes(mesh, c, &mut nodes)?;
+        if let Some(&v) = nodes.iter().find(|&&v| v as usize >= np) {
+            return Err(BuildError::IndexOutOfRange { cell: c, index: v, points: np });
+        }
+    }
+    Ok(())
+}
+
 impl VertexCells {
-    /// Builds the incidence over `np` points; checks every node index against it.
-    pub fn new(mesh: &IndexedMesh, np: usize) -> Result<VertexCells, BuildError> {
+    /// Builds the incidence over `np` points from the distinct vertex ids of each cell,
+    /// given by `nodes_of` (cells in order; ids already checked to be below `np`).
+    pub fn new(np: usize, cells: usize, mut nodes_of: impl FnMut(usize, &mut Vec<u32>)) -> VertexCells {
         let mut count = vec![0u32; np + 1];
         let mut nodes = Vec::new();
-        for c in 0..mesh.nb_cells() {
-            cell_nodes(mesh, c, &mut nodes)?;
-            for &v in &nodes {
-                if v as usize >= np {
-                    return Err(BuildError::IndexOutOfRange { cell: c, index: v, points: np });
-                }
-                count[v as usize + 1] += 1;
-            }
+        for c in 0..cells {
+            nodes_of(c, &mut nodes);
+            nodes.iter().for_each(|&v| count[v as usize + 1] += 1);
         }
         for i in 0..np {
             count[i + 1] += count[i];
         }
-        let mut fill = count.clone();
-        let mut cells = vec![0u32; count[np] as usize];
-        for c in 0..mesh.nb_cells() {
-            cell_nodes(mesh, c, &mut nodes)?;
+        let mut cells_of = vec![0u32; count[np] as usize];
+        // Filling moves each row's start to its end; the starts are restored after.
+        for c in 0..cells {
+            nodes_of(c, &mut nodes);
             for &v in &nodes {
-                cells[fill[v as usize] as usize] = c as u32;
-                fill[v as usize] += 1;
+                cells_of[count[v as usize] as usize] = c as u32;
+                count[v as usize] += 1;
             }
         }
-        Ok(VertexCells { start: count, cells })
+        for i in (1..=np).rev() {
+            count[i] = count[i - 1];
+        }
+        count[0] = 0;
+        VertexCells { start: count, cells: cells_of }
     }
 
     /// Cells using point `v`.

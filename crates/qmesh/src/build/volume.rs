@@ -1,8 +1,8 @@
 //! Indexed volume cells → 3-map: one volume per cell, shared faces 3-sewn.
 
-use super::adjacency::VertexCells;
+use super::adjacency::{VertexCells, check_cells};
 use super::error::BuildError;
-use super::indexed::IndexedMesh;
+use super::indexed::{CellKind, IndexedMesh};
 use crate::cmap::{CMap3, Dart, Orbit};
 use crate::geom::{signed_volume_of_faces, signed_volume_of_table};
 
@@ -35,8 +35,6 @@ pub struct BuildReport {
 struct CellDarts {
     /// First dart of each cell.
     first: Vec<u32>,
-    /// Node order actually used (the input order, or the flipped one).
-    flipped: Vec<bool>,
     /// Polyhedra: cell → first darts of its faces.
     poly_faces: rustc_hash::FxHashMap<u32, Vec<u32>>,
 }
@@ -105,22 +103,9 @@ fn compare_faces(map: &CMap3, d: Dart, e: Dart) -> FaceMatch {
 }
 
 impl CellDarts {
-    /// The nodes of cell `c` in the order its darts were built with.
-    fn nodes(&self, mesh: &IndexedMesh, c: u32, buf: &mut [u32; 8]) -> usize {
-        let (kind, nodes) = mesh.cell(c as usize);
-        if self.flipped[c as usize] {
-            for (k, &from) in kind.flipped_order().iter().enumerate() {
-                buf[k] = nodes[from];
-            }
-        } else {
-            buf[..nodes.len()].copy_from_slice(nodes);
-        }
-        nodes.len()
-    }
-
     /// First darts of the faces of cell `c`.
-    fn faces(&self, mesh: &IndexedMesh, c: u32) -> Vec<u32> {
-        match mesh.kinds[c as usize].standard() {
+    fn faces(&self, kinds: &[CellKind], c: u32) -> Vec<u32> {
+        match kinds[c as usize].standard() {
             Some(k) => {
                 let l = k.layout();
                 l.face_start[..l.face_start.len() - 1].iter().map(|&s| self.first[c as usize] + s as u32).collect()
@@ -129,32 +114,43 @@ impl CellDarts {
         }
     }
 
+    /// The distinct vertex ids of cell `c`, read from its darts.
+    fn nodes(&self, map: &CMap3, kinds: &[CellKind], c: usize, out: &mut Vec<u32>) {
+        out.clear();
+        match kinds[c].standard() {
+            Some(k) => {
+                let l = k.layout();
+                let first = self.first[c];
+                out.extend((0..k.nodes()).map(|n| map.vertex_of(dart(first + l.dart_of_node(n) as u32))));
+            }
+            None => {
+                for &f in &self.poly_faces[&(c as u32)] {
+                    out.extend(map.orbit(dart(f), Orbit::HalfFace).iter().map(|&x| map.vertex_of(x)));
+                }
+                out.sort_unstable();
+                out.dedup();
+            }
+        }
+    }
+
     /// How the face of `d` (running a → b) relates to the faces of cell `c2`.
-    fn match_in(&self, map: &CMap3, mesh: &IndexedMesh, c2: u32, d: Dart) -> FaceMatch {
+    fn match_in(&self, map: &CMap3, kinds: &[CellKind], c2: u32, d: Dart) -> FaceMatch {
         let (a, b) = (map.vertex_of(d), map.vertex_of(map.next(d)));
-        let Some(kind) = mesh.kinds[c2 as usize].standard() else {
+        let Some(kind) = kinds[c2 as usize].standard() else {
             return self.poly_faces[&c2]
                 .iter()
                 .map(|&g| compare_faces(map, d, dart(g)))
                 .find(|m| !matches!(m, FaceMatch::None))
                 .unwrap_or(FaceMatch::None);
         };
-        let mut buf = [0u32; 8];
-        let n = self.nodes(mesh, c2, &mut buf);
-        let (Some(i), Some(j)) = (buf[..n].iter().position(|&v| v == a), buf[..n].iter().position(|&v| v == b)) else {
-            return FaceMatch::None;
-        };
-        let l = kind.layout();
         let first = self.first[c2 as usize];
-        if let Some(k) = l.dart_of_edge(j, i) {
-            let y = dart(first + k as u32);
-            if opposite_cycles(map, d, y) {
-                return FaceMatch::Opposite(y);
+        let n = kind.layout().origin.len() as u32;
+        for x in (first..first + n).map(dart) {
+            let (from, to) = (map.vertex_of(x), map.vertex_of(map.next(x)));
+            if (from, to) == (b, a) && opposite_cycles(map, d, x) {
+                return FaceMatch::Opposite(x);
             }
-        }
-        if let Some(k) = l.dart_of_edge(i, j) {
-            let z = dart(first + k as u32);
-            if same_cycles(map, d, z) {
+            if (from, to) == (a, b) && same_cycles(map, d, x) {
                 return FaceMatch::Same;
             }
         }
@@ -169,27 +165,31 @@ impl CellDarts {
 /// not closed and manifold, a face shared by more than two cells, or two cells meeting
 /// with inconsistent orientation.
 pub fn build_volume_map(mesh: &IndexedMesh, opts: &BuildOptions) -> Result<(CMap3, BuildReport), BuildError> {
-    build_with_points(mesh, mesh.points.clone(), opts)
+    let (map, cells, report) = create_cells(mesh, mesh.points.clone(), opts)?;
+    sew_and_finish(map, cells, &mesh.kinds, report)
 }
 
-/// As [`build_volume_map`], taking the mesh by value so that its points move into the
-/// map instead of being copied (lower peak memory when loading files).
+/// As [`build_volume_map`], taking the mesh by value: its points move into the map and
+/// its connectivity is freed once the darts exist (lower peak memory when loading).
 pub fn build_volume_map_owned(mut mesh: IndexedMesh, opts: &BuildOptions) -> Result<(CMap3, BuildReport), BuildError> {
     let points = std::mem::take(&mut mesh.points);
-    build_with_points(&mesh, points, opts)
+    let (map, cells, report) = create_cells(&mesh, points, opts)?;
+    let kinds = std::mem::take(&mut mesh.kinds);
+    drop(mesh);
+    sew_and_finish(map, cells, &kinds, report)
 }
 
-/// The builder proper; `mesh.points` is not read (the points are passed separately).
-fn build_with_points(
+/// Creates one volume per cell of `mesh` (whose own points are not read: the map gets
+/// `points`), oriented and labelled; nothing is sewn yet.
+fn create_cells(
     mesh: &IndexedMesh,
     points: Vec<[f64; 3]>,
     opts: &BuildOptions,
-) -> Result<(CMap3, BuildReport), BuildError> {
+) -> Result<(CMap3, CellDarts, BuildReport), BuildError> {
     if mesh.nb_cells() == 0 {
         return Err(BuildError::Empty);
     }
-    let np = points.len();
-    let adj = VertexCells::new(mesh, np)?;
+    check_cells(mesh, points.len())?;
     let mut report = BuildReport::default();
     let darts: usize = (0..mesh.nb_cells())
         .map(|c| match mesh.kinds[c].standard() {
@@ -204,11 +204,7 @@ fn build_with_points(
     } else if let Some(&l) = mesh.labels.first() {
         map.set_uniform_label(l);
     }
-    let mut cells = CellDarts {
-        first: Vec::with_capacity(mesh.nb_cells()),
-        flipped: vec![false; mesh.nb_cells()],
-        poly_faces: Default::default(),
-    };
+    let mut cells = CellDarts { first: Vec::with_capacity(mesh.nb_cells()), poly_faces: Default::default() };
     let mut out = [0u32; 24];
     for c in 0..mesh.nb_cells() {
         let (kind, nodes) = mesh.cell(c);
@@ -224,7 +220,6 @@ fn build_with_points(
                     for (k, &from) in kind.flipped_order().iter().enumerate() {
                         n[k] = nodes[from];
                     }
-                    cells.flipped[c] = true;
                     report.flipped_cells += 1;
                 }
             } else if vol == 0.0 {
@@ -261,7 +256,20 @@ fn build_with_points(
             }
         }
     }
-    sew_shared_faces(&mut map, mesh, &cells, &adj)?;
+    Ok((map, cells, report))
+}
+
+/// Sews the cells' shared faces (found through a vertex → cells incidence read from
+/// the darts), counts unused points and splits non-manifold vertices.
+fn sew_and_finish(
+    mut map: CMap3,
+    cells: CellDarts,
+    kinds: &[CellKind],
+    mut report: BuildReport,
+) -> Result<(CMap3, BuildReport), BuildError> {
+    let np = map.nb_vertex_ids();
+    let adj = VertexCells::new(np, kinds.len(), |c, out| cells.nodes(&map, kinds, c, out));
+    sew_shared_faces(&mut map, kinds, &cells, &adj)?;
     report.unreferenced_points = (0..np as u32).filter(|&v| adj.is_unused(v)).count();
     drop((adj, cells));
     report.split_vertices = split_shared_vertex_ids(&mut map);
@@ -271,12 +279,12 @@ fn build_with_points(
 /// 3-sews every face to the face of a neighbouring cell with the opposite cycle.
 fn sew_shared_faces(
     map: &mut CMap3,
-    mesh: &IndexedMesh,
+    kinds: &[CellKind],
     cells: &CellDarts,
     adj: &VertexCells,
 ) -> Result<(), BuildError> {
-    for c in 0..mesh.nb_cells() as u32 {
-        'face: for f in cells.faces(mesh, c) {
+    for c in 0..kinds.len() as u32 {
+        'face: for f in cells.faces(kinds, c) {
             let d = dart(f);
             if !map.is_free(d, 3) {
                 continue;
@@ -284,7 +292,7 @@ fn sew_shared_faces(
             let (a, b) = (map.vertex_of(d), map.vertex_of(map.next(d)));
             let third = map.vertex_of(map.next(map.next(d)));
             for c2 in adj.common3(a, b, third).filter(|&c2| c2 != c) {
-                match cells.match_in(map, mesh, c2, d) {
+                match cells.match_in(map, kinds, c2, d) {
                     FaceMatch::None => {}
                     FaceMatch::Same => {
                         return Err(BuildError::InconsistentOrientation {
@@ -295,7 +303,7 @@ fn sew_shared_faces(
                     }
                     FaceMatch::Opposite(y) => {
                         if let Some(taken) = map.beta(y, 3) {
-                            let third = owner(map, mesh, cells, adj, (a, b), taken, [c, c2]);
+                            let third = owner(map, kinds, cells, adj, (a, b), taken, [c, c2]);
                             return Err(BuildError::FaceSharedByMoreThanTwo {
                                 face: cycle(map, d),
                                 a: c2 as usize,
@@ -320,7 +328,7 @@ fn cycle(map: &CMap3, d: Dart) -> Vec<u32> {
 /// The cell (other than the two named) whose face holds dart `taken` (error reporting).
 fn owner(
     map: &CMap3,
-    mesh: &IndexedMesh,
+    kinds: &[CellKind],
     cells: &CellDarts,
     adj: &VertexCells,
     (a, b): (u32, u32),
@@ -330,13 +338,17 @@ fn owner(
     let volume = map.orbit(taken, Orbit::Volume);
     adj.common(a, b)
         .filter(|k| !not.contains(k))
-        .find(|&k| cells.faces(mesh, k).iter().any(|&f| volume.contains(&dart(f))))
+        .find(|&k| cells.faces(kinds, k).iter().any(|&f| volume.contains(&dart(f))))
         .map_or(usize::MAX, |k| k as usize)
 }
 
 /// Gives a fresh vertex id to every vertex orbit whose id another orbit already uses
-/// (cells touching only at a vertex or an edge); returns how many were split.
+/// (cells touching only at a vertex or an edge); returns how many were split. The
+/// parallel check settles the common case (no such vertex) without the sequential walk.
 fn split_shared_vertex_ids(map: &mut CMap3) -> usize {
+    if !map.has_shared_vertex_id() {
+        return 0;
+    }
     let reps: Vec<Dart> = map.cells(Orbit::Vertex).collect();
     let mut seen = vec![false; map.nb_vertex_ids()];
     let mut split = 0;

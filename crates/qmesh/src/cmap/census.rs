@@ -98,8 +98,8 @@ impl CMap3 {
     }
 
     /// Whether some vertex id is used by more than one vertex orbit, checked in
-    /// parallel (meaningful once the local checks pass).
-    pub(super) fn has_shared_vertex_id(&self) -> bool {
+    /// parallel (meaningful once the local checks pass, or on a freshly built map).
+    pub fn has_shared_vertex_id(&self) -> bool {
         let (count, first) = self.vertex_histogram();
         self.vertex_pass(&count, &first, false).shared_id
     }

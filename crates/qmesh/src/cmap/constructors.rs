@@ -45,6 +45,8 @@ pub struct Layout {
     pub edge: [[u8; 8]; 8],
     /// Local [β0, β1, β2] of each dart.
     pub local_betas: Vec<[u8; 3]>,
+    /// A local dart starting at each node.
+    pub node_dart: [u8; 8],
 }
 
 impl Layout {
@@ -52,6 +54,12 @@ impl Layout {
     #[inline]
     pub fn dart_of_edge(&self, i: usize, j: usize) -> Option<usize> {
         (self.edge[i][j] as usize).checked_sub(1)
+    }
+
+    /// A local dart starting at node `n`.
+    #[inline]
+    pub fn dart_of_node(&self, n: usize) -> usize {
+        self.node_dart[n] as usize
     }
 
     /// Number of darts of face `f`.
@@ -126,7 +134,11 @@ impl Layout {
             local_betas[i as usize][2] = j;
             local_betas[j as usize][2] = i;
         }
-        Layout { origin, face_start, pairs, edge: by_edge, local_betas }
+        let mut node_dart = [0u8; 8];
+        for (k, &o) in origin.iter().enumerate().rev() {
+            node_dart[o as usize] = k as u8;
+        }
+        Layout { origin, face_start, pairs, edge: by_edge, local_betas, node_dart }
     }
 }
 
