@@ -3,7 +3,7 @@
 use std::process::ExitCode;
 
 use anyhow::Result;
-use qmesh::build::{BuildOptions, count_kinds_of};
+use qmesh::build::{BuildOptions, count_kinds_of, non_conformal_faces_of};
 use qmesh::cmap::CMap3;
 use qmesh::io::load_map;
 use serde_json::json;
@@ -25,11 +25,11 @@ pub fn run(a: Args) -> Result<ExitCode> {
     let loaded = load_map(&a.input.input, parse_format(&a.input.format)?, &opts)?;
     let map: &CMap3 = &loaded.map;
     let census = map.census();
-    let (c, violations) = (census.counts, census.violations);
-    let kinds = count_kinds_of(map, &census.volume_reps);
+    let (c, violations) = (&census.counts, &census.violations);
     let surface = map.dimension() == 2;
+    let kinds = count_kinds_of(map, &census.volume_reps);
     let t = std::time::Instant::now();
-    let non_conformal = if surface { 0 } else { qmesh::build::non_conformal_faces(map) };
+    let non_conformal = if surface { 0 } else { non_conformal_faces_of(map, &census.boundary_reps) };
     let conformity_seconds = t.elapsed().as_secs_f64();
     let mut j = json!({
         "file": a.input.input.display().to_string(),

@@ -27,19 +27,32 @@ impl Grid {
 /// Only 3-free faces are examined: cells meeting in part of a face, or at a vertex in
 /// the middle of an edge, always leave unshared faces inside the mesh.
 pub fn non_conformal_faces(map: &CMap3) -> usize {
-    // One pass over the darts: the unshared ones. A vertex touching an unshared face
-    // lies on unshared faces itself (those of the finer cells on the other side), so
-    // only their vertices are bucketed.
-    let free: Vec<Dart> = map.darts().filter(|&d| map.is_free(d, 3)).collect();
-    if free.is_empty() {
+    let faces: Vec<Dart> = map.darts().filter(|&d| map.is_free(d, 3) && is_smallest_of_face(map, d)).collect();
+    non_conformal_faces_of(map, &faces)
+}
+
+/// As [`non_conformal_faces`], given one dart of every unshared face (as
+/// [`Census::boundary_reps`](crate::cmap::Census) lists them).
+pub fn non_conformal_faces_of(map: &CMap3, faces: &[Dart]) -> usize {
+    if faces.is_empty() {
         return 0;
     }
-    let mut ids: Vec<u32> = free.iter().map(|&d| map.vertex_of(d)).collect();
+    // A vertex touching an unshared face lies on unshared faces itself (those of the
+    // finer cells on the other side), so only their vertices are bucketed.
+    let mut ids: Vec<u32> = Vec::new();
+    for &d in faces {
+        let mut x = d;
+        loop {
+            ids.push(map.vertex_of(x));
+            x = map.next(x);
+            if x == d {
+                break;
+            }
+        }
+    }
     ids.sort_unstable();
     ids.dedup();
     let b = Aabb::of(ids.iter().map(|&v| map.position(v)));
-    // One dart per unshared face: the smallest of its cycle.
-    let faces: Vec<Dart> = free.into_iter().filter(|&d| is_smallest_of_face(map, d)).collect();
     // Buckets about the size of a face (the mean length of the first edges).
     let mean_edge = faces
         .iter()

@@ -14,7 +14,7 @@ mod recognise;
 mod surface;
 mod volume;
 
-pub use conformity::non_conformal_faces;
+pub use conformity::{non_conformal_faces, non_conformal_faces_of};
 pub use error::{BuildError, Subject};
 pub use extract::{
     ExtractedKinds, boundary_polygons, classify_volume, count_cell_kinds, count_kinds_of, extract, recognise_volume,

@@ -35,6 +35,7 @@ struct DartTally {
     half_faces: usize,
     sewn_half_faces: usize,
     volume_reps: Vec<Dart>,
+    boundary_reps: Vec<Dart>,
 }
 
 /// What pass B finds for a range of vertex ids.
@@ -94,7 +95,7 @@ impl CMap3 {
             components: components(self.nb_vertex_ids(), &vertices.links),
             boundary_faces: tally.half_faces - tally.sewn_half_faces,
         };
-        Census { counts, violations, volume_reps: tally.volume_reps }
+        Census { counts, violations, volume_reps: tally.volume_reps, boundary_reps: tally.boundary_reps }
     }
 
     /// Whether some vertex id is used by more than one vertex orbit, checked in
@@ -124,6 +125,7 @@ impl CMap3 {
             total.half_faces += t.half_faces;
             total.sewn_half_faces += t.sewn_half_faces;
             total.volume_reps.extend(t.volume_reps);
+            total.boundary_reps.extend(t.boundary_reps);
         }
         (violations, total)
     }
@@ -138,7 +140,11 @@ impl CMap3 {
                 continue;
             }
             t.half_faces += 1;
-            t.sewn_half_faces += usize::from(self.beta_raw(d, 3) != 0);
+            if self.beta_raw(d, 3) != 0 {
+                t.sewn_half_faces += 1;
+            } else {
+                t.boundary_reps.push(Dart::from_raw(d).expect("i ≥ 1"));
+            }
             if !walked.get(i) && self.may_be_smallest_of_volume(d) {
                 let start = Dart::from_raw(d).expect("i ≥ 1");
                 let mut smallest = d;

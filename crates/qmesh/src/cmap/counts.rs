@@ -13,6 +13,9 @@ pub struct Census {
     pub violations: Vec<Violation>,
     /// One dart per volume.
     pub volume_reps: Vec<Dart>,
+    /// One dart per 3-free half-face (the boundary of a volume map; every face of a
+    /// surface map): the smallest of its cycle, in increasing order.
+    pub boundary_reps: Vec<Dart>,
 }
 
 /// Result of [`CMap3::face_sweep`].
@@ -92,7 +95,11 @@ impl CMap3 {
             boundary_faces,
         };
         let violations = if local.is_empty() { shared } else { local };
-        Census { counts, violations, volume_reps: reps }
+        let boundary_reps = self
+            .darts()
+            .filter(|&d| self.is_free(d, 3) && self.orbit(d, Orbit::HalfFace).iter().all(|&x| x >= d))
+            .collect();
+        Census { counts, violations, volume_reps: reps, boundary_reps }
     }
 
     /// Half-faces (β1 cycles) and how many of them are 3-sewn, in one sequential sweep.
