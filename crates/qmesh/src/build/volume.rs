@@ -205,16 +205,16 @@ fn create_cells(
         map.set_uniform_label(l);
     }
     let mut cells = CellDarts { first: Vec::with_capacity(mesh.nb_cells()), poly_faces: Default::default() };
+    let signs = standard_cell_signs(mesh, map.positions());
     let mut out = [0u32; 24];
     for c in 0..mesh.nb_cells() {
         let (kind, nodes) = mesh.cell(c);
         let label = if labelled { mesh.labels[c] } else { 0 };
         if let Some(std) = kind.standard() {
-            let table = std.faces();
             let mut n = [0u32; 8];
             n[..nodes.len()].copy_from_slice(nodes);
-            let vol = signed_volume_of_table(table, nodes, map.positions());
-            if vol < 0.0 {
+            let sign = signs[c];
+            if sign < 0 {
                 report.inverted_cells += 1;
                 if opts.fix_orientation {
                     for (k, &from) in kind.flipped_order().iter().enumerate() {
@@ -222,7 +222,7 @@ fn create_cells(
                     }
                     report.flipped_cells += 1;
                 }
-            } else if vol == 0.0 {
+            } else if sign == 0 {
                 report.degenerate_cells += 1;
             }
             let count = map.make_standard_cell(std, &n, &mut out);
@@ -257,6 +257,21 @@ fn create_cells(
         }
     }
     Ok((map, cells, report))
+}
+
+/// The sign of the signed volume of every standard cell in its input node order (0
+/// for polyhedra, which are measured as they are built), computed in parallel.
+fn standard_cell_signs(mesh: &IndexedMesh, points: &[[f64; 3]]) -> Vec<i8> {
+    use rayon::prelude::*;
+    (0..mesh.nb_cells())
+        .into_par_iter()
+        .with_min_len(1 << 10)
+        .map(|c| {
+            let (kind, nodes) = mesh.cell(c);
+            let vol = kind.standard().map_or(0.0, |k| signed_volume_of_table(k.faces(), nodes, points));
+            if vol < 0.0 { -1 } else { i8::from(vol > 0.0) }
+        })
+        .collect()
 }
 
 /// Sews the cells' shared faces (found through a vertex → cells incidence read from
