@@ -3,21 +3,27 @@
 //! of ("hanging" vertices, T-junctions).
 
 use rayon::prelude::*;
-use rustc_hash::FxHashMap;
+use smallvec::SmallVec;
 
 use crate::cmap::{CMap3, Dart};
 use crate::geom::{Aabb, cross, dot, sub};
 
-/// Vertex ids bucketed on a uniform grid.
+/// Vertex ids bucketed on a uniform grid: (cell key, vertex id) sorted by key.
 struct Grid {
     lo: [f64; 3],
     cell: f64,
-    buckets: FxHashMap<[i64; 3], Vec<u32>>,
+    entries: Vec<([i64; 3], u32)>,
 }
 
 impl Grid {
     fn key(&self, p: [f64; 3]) -> [i64; 3] {
         [0, 1, 2].map(|k| ((p[k] - self.lo[k]) / self.cell).floor() as i64)
+    }
+
+    /// The vertex ids in the grid cell `key`.
+    fn bucket(&self, key: [i64; 3]) -> impl Iterator<Item = u32> + '_ {
+        let start = self.entries.partition_point(|e| e.0 < key);
+        self.entries[start..].iter().take_while(move |e| e.0 == key).map(|e| e.1)
     }
 }
 
@@ -60,11 +66,9 @@ pub fn non_conformal_faces_of(map: &CMap3, faces: &[Dart]) -> usize {
         .sum::<f64>()
         / faces.len().max(1) as f64;
     let cell = mean_edge.max(f64::MIN_POSITIVE);
-    let mut grid = Grid { lo: b.lo, cell, buckets: FxHashMap::default() };
-    for &v in &ids {
-        let k = grid.key(map.position(v));
-        grid.buckets.entry(k).or_default().push(v);
-    }
+    let mut grid = Grid { lo: b.lo, cell, entries: Vec::with_capacity(ids.len()) };
+    grid.entries = ids.iter().map(|&v| (grid.key(map.position(v)), v)).collect();
+    grid.entries.par_sort_unstable();
     faces.par_iter().filter(|&&d| face_is_touched(map, &grid, d)).count()
 }
 
@@ -80,13 +84,16 @@ fn is_smallest_of_face(map: &CMap3, d: Dart) -> bool {
 }
 
 fn face_is_touched(map: &CMap3, grid: &Grid, d: Dart) -> bool {
-    let mut verts = vec![map.vertex_of(d)];
-    let mut x = map.next(d);
-    while x != d {
+    let mut verts: SmallVec<[u32; 8]> = SmallVec::new();
+    let mut x = d;
+    loop {
         verts.push(map.vertex_of(x));
         x = map.next(x);
+        if x == d {
+            break;
+        }
     }
-    let pts: Vec<[f64; 3]> = verts.iter().map(|&v| map.position(v)).collect();
+    let pts: SmallVec<[[f64; 3]; 8]> = verts.iter().map(|&v| map.position(v)).collect();
     let fb = Aabb::of(pts.iter().copied());
     let fe = fb.extent();
     let tol = 1e-7 * dot(fe, fe).sqrt();
@@ -94,8 +101,7 @@ fn face_is_touched(map: &CMap3, grid: &Grid, d: Dart) -> bool {
     for i in klo[0]..=khi[0] {
         for j in klo[1]..=khi[1] {
             for k in klo[2]..=khi[2] {
-                let Some(bucket) = grid.buckets.get(&[i, j, k]) else { continue };
-                for &w in bucket {
+                for w in grid.bucket([i, j, k]) {
                     let q = map.position(w);
                     let own = verts.contains(&w) || pts.iter().any(|&p| dot(sub(p, q), sub(p, q)).sqrt() <= tol);
                     if !own && on_polygon(&pts, q, tol) {
