@@ -207,13 +207,12 @@ fn create_cells(
     let mut cells = CellDarts { first: Vec::with_capacity(mesh.nb_cells()), poly_faces: Default::default() };
     let signs = standard_cell_signs(mesh, map.positions());
     let mut out = [0u32; 24];
-    for c in 0..mesh.nb_cells() {
+    for (c, &sign) in signs.iter().enumerate() {
         let (kind, nodes) = mesh.cell(c);
         let label = if labelled { mesh.labels[c] } else { 0 };
         if let Some(std) = kind.standard() {
             let mut n = [0u32; 8];
             n[..nodes.len()].copy_from_slice(nodes);
-            let sign = signs[c];
             if sign < 0 {
                 report.inverted_cells += 1;
                 if opts.fix_orientation {
