@@ -60,6 +60,9 @@ impl fmt::Display for Violation {
     }
 }
 
+/// How many darts ahead the local checks prefetch the 3-sewn neighbour.
+const PREFETCH_AHEAD: usize = 16;
+
 impl CMap3 {
     /// ```
     /// use qmesh::cmap::{CMap3, Violation};
@@ -121,7 +124,13 @@ impl CMap3 {
         let mut out = Vec::new();
         let n = self.dart_capacity() as u32;
         let live = |x: u32| x != 0 && x < n && Dart::from_raw(x).is_some_and(|d| self.is_live(d));
+        let end = range.end;
         for r in range.filter(|&i| i > 0).map(|i| i as u32).filter(|&i| live(i)) {
+            // The 3-sewn neighbour lives in another cell, usually far away in memory:
+            // ask for it a few darts ahead so that its cache line is there when needed.
+            if let Some(ahead) = self.betas.get((r as usize + PREFETCH_AHEAD).min(end)) {
+                self.prefetch_dart(ahead[3]);
+            }
             let b = self.betas[r as usize];
             let mut dangling = false;
             for (i, &t) in b.iter().enumerate() {
