@@ -36,6 +36,8 @@ pub enum Orbit {
 pub trait Visited {
     /// Inserts `i`; returns true when it was not there before.
     fn visit(&mut self, i: u32) -> bool;
+    /// Whether `i` is there.
+    fn has(&self, i: u32) -> bool;
 }
 
 impl Visited for BitSet {
@@ -43,9 +45,19 @@ impl Visited for BitSet {
     fn visit(&mut self, i: u32) -> bool {
         self.insert(i as usize)
     }
+
+    #[inline]
+    fn has(&self, i: u32) -> bool {
+        self.get(i as usize)
+    }
 }
 
 impl Visited for FxHashSet<u32> {
+    #[inline]
+    fn has(&self, i: u32) -> bool {
+        self.contains(&i)
+    }
+
     #[inline]
     fn visit(&mut self, i: u32) -> bool {
         self.insert(i)
@@ -202,12 +214,15 @@ pub fn walk_orbit<V: Visited>(
         }
         return;
     };
-    stack.push(start.raw());
-    while let Some(entry) = stack.pop() {
+    // Entries are marked when popped, not when stacked: the other generators often map
+    // a whole cycle onto another (β3 between the two sides of a face), and marking
+    // them all on the way in would cut that cycle into one-dart walks.
+    let mut entry = start.raw();
+    loop {
         let mut x = entry;
         loop {
             visit(Dart::from_raw(x).expect("walks hold no ε"));
-            other_neighbours(map, x, orbit, |n| push_unseen(seen, stack, n));
+            other_neighbours(map, x, orbit, |n| stack_if_new(seen, stack, n));
             x = cycle.forward(map, x);
             if x == 0 || !seen.visit(x) {
                 break;
@@ -216,9 +231,24 @@ pub fn walk_orbit<V: Visited>(
         let mut y = cycle.backward(map, entry);
         while y != 0 && seen.visit(y) {
             visit(Dart::from_raw(y).expect("walks hold no ε"));
-            other_neighbours(map, y, orbit, |n| push_unseen(seen, stack, n));
+            other_neighbours(map, y, orbit, |n| stack_if_new(seen, stack, n));
             y = cycle.backward(map, y);
         }
+        entry = loop {
+            match stack.pop() {
+                Some(e) if seen.visit(e) => break e,
+                Some(_) => {}
+                None => return,
+            }
+        };
+    }
+}
+
+/// Stacks `n` unless it is ε or already seen (without marking it).
+#[inline]
+fn stack_if_new<V: Visited>(seen: &V, stack: &mut Vec<u32>, n: u32) {
+    if n != 0 && !seen.has(n) {
+        stack.push(n);
     }
 }
 
