@@ -3,7 +3,7 @@
 # make_hexahedron/make_tetrahedron per cell, sew3_same_facets, count_all_cells, is_valid)
 # on armadillo_out.mesh and a generated 50³ hex grid. Installs what it needs.
 # usage: bench/compare.sh [RUNS]   (prints a Markdown table for BENCHMARKS.md)
-# Times are medians of RUNS whole-process runs, taken in turn in the same period; peak
+# Times are medians of RUNS whole-process runs, the commands taken round-robin; peak
 # RSS is the largest seen (wait4). qmesh runs once with its default thread pool (2 on
 # the CI machine) and once with RAYON_NUM_THREADS=1; the CGAL program is sequential.
 set -euo pipefail

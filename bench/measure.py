@@ -2,8 +2,10 @@
 """Run commands side by side; report median wall time and peak RSS (from wait4).
 
 usage: measure.py RUNS LABEL -- CMD... [--- LABEL -- CMD...]...
-Prints one JSON object per command with the median seconds, the max peak RSS, and the
-command's own stdout (parsed when it is JSON) from one extra run."""
+The commands run round-robin (one run of each, RUNS times), so a shared machine that
+speeds up or slows down during the measurement affects them alike. Prints one JSON
+object per command with the median seconds, the max peak RSS, and the command's own
+stdout (parsed when it is JSON) from one extra run."""
 import json
 import os
 import statistics
@@ -12,27 +14,28 @@ import sys
 import time
 
 
-def measure(runs, cmd):
-    walls, rss, last = [], 0, ""
-    for _ in range(runs):
-        t = time.perf_counter()
-        pid = os.fork()
-        if pid == 0:
-            fd = os.open(os.devnull, os.O_WRONLY)
-            os.dup2(fd, 1)
-            os.dup2(fd, 2)
-            os.execvp(cmd[0], cmd)
-        _, status, usage = os.wait4(pid, 0)
-        walls.append(time.perf_counter() - t)
-        rss = max(rss, usage.ru_maxrss * 1024)
-        if os.waitstatus_to_exitcode(status) != 0:
-            sys.exit(f"command failed: {' '.join(cmd)}")
+def run_once(cmd):
+    """Wall seconds and peak RSS bytes of one run of cmd (output discarded)."""
+    t = time.perf_counter()
+    pid = os.fork()
+    if pid == 0:
+        fd = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(fd, 1)
+        os.dup2(fd, 2)
+        os.execvp(cmd[0], cmd)
+    _, status, usage = os.wait4(pid, 0)
+    wall = time.perf_counter() - t
+    if os.waitstatus_to_exitcode(status) != 0:
+        sys.exit(f"command failed: {' '.join(cmd)}")
+    return wall, usage.ru_maxrss * 1024
+
+
+def output_of(cmd):
     out = subprocess.run(cmd, capture_output=True, text=True).stdout
     try:
-        out = json.loads(out)
+        return json.loads(out)
     except ValueError:
-        pass
-    return {"seconds": statistics.median(walls), "peak_rss_bytes": rss, "output": out}
+        return out
 
 
 def main():
@@ -45,10 +48,15 @@ def main():
         else:
             cur.append(a)
     groups.append(cur)
-    for g in groups:
-        label, cmd = g[0], g[2:]
-        r = measure(runs, cmd)
-        r["label"] = label
+    walls = [[] for _ in groups]
+    rss = [0 for _ in groups]
+    for _ in range(runs):
+        for k, g in enumerate(groups):
+            w, m = run_once(g[2:])
+            walls[k].append(w)
+            rss[k] = max(rss[k], m)
+    for k, g in enumerate(groups):
+        r = {"seconds": statistics.median(walls[k]), "peak_rss_bytes": rss[k], "output": output_of(g[2:]), "label": g[0]}
         print(json.dumps(r))
 
 
