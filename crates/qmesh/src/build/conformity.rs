@@ -45,17 +45,7 @@ pub fn non_conformal_faces_of(map: &CMap3, faces: &[Dart]) -> usize {
     }
     // A vertex touching an unshared face lies on unshared faces itself (those of the
     // finer cells on the other side), so only their vertices are bucketed.
-    let mut ids: Vec<u32> = Vec::new();
-    for &d in faces {
-        let mut x = d;
-        loop {
-            ids.push(map.vertex_of(x));
-            x = map.next(x);
-            if x == d {
-                break;
-            }
-        }
-    }
+    let mut ids: Vec<u32> = faces.iter().flat_map(|&d| face_vertices(map, d)).collect();
     ids.sort_unstable();
     ids.dedup();
     let b = Aabb::of(ids.iter().map(|&v| map.position(v)));
@@ -83,16 +73,21 @@ fn is_smallest_of_face(map: &CMap3, d: Dart) -> bool {
     true
 }
 
-fn face_is_touched(map: &CMap3, grid: &Grid, d: Dart) -> bool {
-    let mut verts: SmallVec<[u32; 8]> = SmallVec::new();
+/// The vertex ids around the half-face of `d`, in cycle order (inline up to 8).
+fn face_vertices(map: &CMap3, d: Dart) -> SmallVec<[u32; 8]> {
+    let mut verts = SmallVec::new();
     let mut x = d;
     loop {
         verts.push(map.vertex_of(x));
         x = map.next(x);
         if x == d {
-            break;
+            return verts;
         }
     }
+}
+
+fn face_is_touched(map: &CMap3, grid: &Grid, d: Dart) -> bool {
+    let verts = face_vertices(map, d);
     let pts: SmallVec<[[f64; 3]; 8]> = verts.iter().map(|&v| map.position(v)).collect();
     let fb = Aabb::of(pts.iter().copied());
     let fe = fb.extent();
