@@ -30,6 +30,10 @@ enum Command {
     Quality(cmd::quality::Args),
     /// Query-replace (2022): split edges, replace matching faces, then volumes.
     Replace(cmd::replace::Args),
+    /// Query (2025): match connected sets of volumes from every dart; counts, selection, matched cells.
+    Query(cmd::query::Args),
+    /// Query-modify (2025): extend / delete / replace the matches of each rule of a TOML rule file.
+    Modify(cmd::modify::Args),
     /// Pattern sets: audit (kinds, signatures, automorphisms, duplicates).
     Patterns(cmd::patterns::Args),
     /// Octree hexahedral subdivision of a surface (2022 Algorithm 5), with 2:1 balance.
@@ -56,6 +60,8 @@ fn main() -> ExitCode {
         Command::Demo(a) => cmd::demo::run(a),
         Command::Patterns(a) => cmd::patterns::run(a),
         Command::Replace(a) => cmd::replace::run(a),
+        Command::Query(a) => cmd::query::run(a),
+        Command::Modify(a) => cmd::modify::run(a),
         Command::Quality(a) => cmd::quality::run(a),
         Command::Subdivide(a) => cmd::subdivide::run(a),
         Command::Conformal(a) => cmd::conformal::run(a),

@@ -123,6 +123,10 @@ pub struct IndexedMesh {
     /// Further per-cell (or per-polygon, for surfaces) arrays written for ParaView:
     /// `level`, `pattern_id`, `scaled_jacobian`, …
     pub cell_arrays: Vec<CellArray>,
+    /// Boundary faces listed beside the cells of a volume file, with their reference
+    /// (Medit `Triangles`/`Quadrilaterals` in a file with volume cells): per-face
+    /// boundary conditions of queries (2025 §5.1.2) are given this way.
+    pub face_labels: Vec<(Vec<u32>, i32)>,
 }
 
 /// A named per-cell array.
@@ -196,6 +200,17 @@ impl IndexedMesh {
     pub fn push_polygon(&mut self, nodes: &[u32]) {
         self.poly_conn.extend_from_slice(nodes);
         self.poly_offsets.push(self.poly_conn.len());
+    }
+
+    /// The cells listed in `cells` (with their labels), over all the points: a piece
+    /// of a mesh to use as a query or pattern.
+    pub fn cell_subset(&self, cells: &[usize]) -> IndexedMesh {
+        let mut m = IndexedMesh { points: self.points.clone(), ..IndexedMesh::new() };
+        for &i in cells {
+            let (k, nodes) = self.cell(i);
+            m.push_cell(k, nodes, self.label(i));
+        }
+        m
     }
 
     pub fn cell(&self, i: usize) -> (CellKind, &[u32]) {

@@ -165,6 +165,12 @@ impl CMap3 {
         self.betas[d as usize][i]
     }
 
+    /// All four links of raw dart `d` (0 = ε), for hot loops that read several.
+    #[inline]
+    pub fn betas_raw(&self, d: u32) -> [u32; 4] {
+        self.betas[d as usize]
+    }
+
     /// Whether d is i-free.
     #[inline]
     pub fn is_free(&self, d: Dart, i: usize) -> bool {

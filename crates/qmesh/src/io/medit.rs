@@ -25,7 +25,7 @@ pub fn read(path: &Path, data: &[u8]) -> IoResult<IndexedMesh> {
     let mut mesh = IndexedMesh::new();
     let mut dim = 3usize;
     let mut saw_header = false;
-    let mut polygons: Vec<(Vec<u32>, u32)> = Vec::new();
+    let mut polygons: Vec<(Vec<u32>, u32, i32)> = Vec::new();
     let mut skipped = 0usize;
     while let Some(kw) = lx.token() {
         match kw {
@@ -71,7 +71,7 @@ pub fn read(path: &Path, data: &[u8]) -> IoResult<IndexedMesh> {
                                 mesh.push_cell(kind, &nodes, Some(r));
                                 mesh.cell_lines.push(lx.line());
                             }
-                            None => polygons.push((nodes.clone(), lx.line())),
+                            None => polygons.push((nodes.clone(), lx.line(), r)),
                         }
                     }
                 } else if kw.starts_with(|c: char| c.is_ascii_alphabetic()) {
@@ -90,10 +90,14 @@ pub fn read(path: &Path, data: &[u8]) -> IoResult<IndexedMesh> {
     }
     if mesh.is_volume() {
         if !polygons.is_empty() {
-            mesh.warnings.push(format!("skipped {} boundary triangles/quadrilaterals (volume mesh)", polygons.len()));
+            mesh.warnings.push(format!(
+                "skipped {} boundary triangles/quadrilaterals (volume mesh; their references are kept as face labels)",
+                polygons.len()
+            ));
+            mesh.face_labels = polygons.into_iter().map(|(p, _, r)| (p, r)).collect();
         }
     } else {
-        for (p, line) in &polygons {
+        for (p, line, _) in &polygons {
             mesh.push_polygon(p);
             mesh.poly_lines.push(*line);
         }
@@ -148,16 +152,18 @@ pub fn write(path: &Path, mesh: &IndexedMesh, w: &mut dyn Write) -> IoResult<()>
             }
             None => {
                 let k = if name == "Triangles" { 3 } else { 4 };
-                let ids: Vec<usize> = (0..mesh.nb_polygons()).filter(|&i| mesh.polygon(i).len() == k).collect();
-                if ids.is_empty() {
+                let polygons = (0..mesh.nb_polygons()).map(|i| (mesh.polygon(i), 0));
+                let labelled = mesh.face_labels.iter().map(|(f, r)| (f.as_slice(), *r));
+                let faces: Vec<(&[u32], i32)> = polygons.chain(labelled).filter(|(f, _)| f.len() == k).collect();
+                if faces.is_empty() {
                     continue;
                 }
-                writeln!(w, "\n{name}\n{}", ids.len()).map_err(io)?;
-                for i in ids {
-                    for &v in mesh.polygon(i) {
+                writeln!(w, "\n{name}\n{}", faces.len()).map_err(io)?;
+                for (f, r) in faces {
+                    for &v in f {
                         write!(w, "{} ", v + 1).map_err(io)?;
                     }
-                    writeln!(w, "0").map_err(io)?;
+                    writeln!(w, "{r}").map_err(io)?;
                 }
             }
         }

@@ -7,12 +7,15 @@ mod flags;
 mod geometry;
 mod load;
 mod set;
+mod source;
 
 pub use audit::{Audit, AuditEntry, audit};
 pub use boundaries::boundaries_mesh;
 pub use flags::{FlagRule, flag_corners, flag_corners_on};
+pub use geometry::interior_coordinates;
 pub use load::{PatternError, load_pattern, pattern_from_map};
 pub use set::{PatternSet, Skipped, load_pattern_dir};
+pub use source::{FaceLabels, read_small_map};
 
 use std::path::PathBuf;
 

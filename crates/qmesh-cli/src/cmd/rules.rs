@@ -1,0 +1,77 @@
+//! What `query` and `modify` share: rules from a TOML file or a single query mesh, the
+//! thread count, and the match-coloured output mesh.
+
+use std::path::Path;
+
+use anyhow::{Context, Result, anyhow};
+use qmesh::build::{CellArray, CellValues};
+use qmesh::cmap::{CMap3, Dart, Orbit, OrbitWalker};
+use qmesh::modify::{Rule, load_rules};
+use qmesh::pattern::read_small_map;
+use qmesh::query::{Condition, Query};
+
+/// Options of a query given as a mesh file instead of a rule file.
+#[derive(clap::Args, Debug, Clone)]
+pub struct QueryArgs {
+    /// Condition of the query's 3-free darts when the query is a mesh file:
+    /// `*`, `eps`, `interior` or `no-connection`.
+    #[arg(long, default_value = "*")]
+    pub boundary: String,
+    /// Worker threads (default: all cores).
+    #[arg(long)]
+    pub threads: Option<usize>,
+}
+
+/// Sets the number of worker threads once for the whole command.
+pub fn set_threads(n: Option<usize>) -> Result<()> {
+    if let Some(n) = n {
+        anyhow::ensure!(n > 0, "--threads must be at least 1");
+        rayon::ThreadPoolBuilder::new().num_threads(n).build_global().context("cannot start the worker threads")?;
+    }
+    Ok(())
+}
+
+/// The rules of a `.toml` rule file, or one query-only rule from a mesh file.
+pub fn rules_of(path: &Path, args: &QueryArgs) -> Result<Vec<Rule>> {
+    if path.extension().is_some_and(|e| e.eq_ignore_ascii_case("toml")) {
+        return Ok(load_rules(path)?);
+    }
+    let c = Condition::parse(&args.boundary)
+        .ok_or_else(|| anyhow!("unknown --boundary '{}' (*, eps, interior, no-connection)", args.boundary))?;
+    let (map, _) = read_small_map(path)?;
+    let name = path.file_stem().map_or("query".into(), |s| s.to_string_lossy().into_owned());
+    let q = Query::new(&name, map, |_| c).with_context(|| format!("{}", path.display()))?;
+    Ok(vec![Rule::find(q)])
+}
+
+/// Per-volume arrays in the map's volume order: `match` (index of the first match
+/// covering the volume, −1 if none) and `match_count`.
+pub fn match_arrays(map: &CMap3, matches: &[Vec<Dart>]) -> Vec<CellArray> {
+    let mut first = vec![-1i32; map.dart_capacity()];
+    let mut count = vec![0i32; map.dart_capacity()];
+    let mut w = OrbitWalker::new();
+    let mut seen = vec![u32::MAX; map.dart_capacity()];
+    for (i, darts) in matches.iter().enumerate() {
+        for &d in darts {
+            // One visit per volume and match: darts of a volume are all in the match.
+            if seen[d.idx()] == i as u32 {
+                continue;
+            }
+            for &x in w.collect(map, d, Orbit::Volume) {
+                seen[x.idx()] = i as u32;
+                count[x.idx()] += 1;
+                if first[x.idx()] < 0 {
+                    first[x.idx()] = i as i32;
+                }
+            }
+        }
+    }
+    let vols: Vec<Dart> = map.cells(Orbit::Volume).collect();
+    vec![
+        CellArray { name: "match".into(), values: CellValues::Int(vols.iter().map(|d| first[d.idx()]).collect()) },
+        CellArray {
+            name: "match_count".into(),
+            values: CellValues::Int(vols.iter().map(|d| count[d.idx()]).collect()),
+        },
+    ]
+}

@@ -1,0 +1,182 @@
+//! Rule files (TOML, no code needed): a list of `[[rule]]` tables, each naming a query
+//! mesh, an operation and (for extend/delete/replace) a target mesh.
+//!
+//! ```toml
+//! [[rule]]
+//! name = "roof"            # optional, defaults to the query file's stem
+//! op = "extend"            # query | extend | delete | replace
+//! query = "block.mesh"     # paths are relative to the rule file
+//! target = "block_roof.mesh"
+//! boundary = "*"           # condition of the query's 3-free darts: * | eps | interior | no-connection
+//! faces = { 7 = "eps" }    # per-face overrides: Medit reference of a boundary face → condition
+//! strategy = "greedy"      # greedy | best | random
+//! metric = "hex-quality"   # for best: hex-quality | volume
+//! max = 50                 # modify at most this many matches
+//! seed = 1                 # for random
+//! ```
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+use serde::Deserialize;
+use toml::Spanned;
+
+use super::plan::{Operation, Plan};
+use super::rule::{Action, Rule};
+use crate::pattern::read_small_map;
+use crate::query::{Condition, Metric, Query, Strategy};
+
+/// A rule file that cannot be used: the file, the line, the key, and why.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("{file}:{line}: {}{msg}", key.as_ref().map(|k| format!("`{k}`: ")).unwrap_or_default(), file = file.display())]
+pub struct RuleError {
+    pub file: PathBuf,
+    pub line: usize,
+    pub key: Option<String>,
+    pub msg: String,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawFile {
+    rule: Vec<Spanned<RawRule>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawRule {
+    name: Option<String>,
+    op: Spanned<String>,
+    query: Spanned<String>,
+    target: Option<Spanned<String>>,
+    boundary: Option<Spanned<String>>,
+    faces: Option<Spanned<BTreeMap<String, Spanned<String>>>>,
+    strategy: Option<Spanned<String>>,
+    metric: Option<Spanned<String>>,
+    max: Option<usize>,
+    seed: Option<u64>,
+}
+
+/// Reads and compiles every rule of a rule file: loads the query and target meshes,
+/// applies the boundary conditions, and computes each modification plan.
+///
+/// # Errors
+/// A [`RuleError`] naming the line and key: TOML syntax, unknown keys or values,
+/// unreadable meshes, queries that are not connected or not closed, targets that do
+/// not fit the operation.
+pub fn load_rules(path: &Path) -> Result<Vec<Rule>, RuleError> {
+    let text = std::fs::read_to_string(path).map_err(|e| RuleError {
+        file: path.into(),
+        line: 0,
+        key: None,
+        msg: format!("cannot read: {e}"),
+    })?;
+    parse_rules(path, &text)
+}
+
+/// As [`load_rules`] on the text of a rule file (`path` names it and anchors relative
+/// mesh paths).
+///
+/// # Errors
+/// As [`load_rules`].
+pub fn parse_rules(path: &Path, text: &str) -> Result<Vec<Rule>, RuleError> {
+    let line_of = |at: usize| text[..at.min(text.len())].matches('\n').count() + 1;
+    let err = |at: usize, key: Option<&str>, msg: String| RuleError {
+        file: path.into(),
+        line: line_of(at),
+        key: key.map(str::to_string),
+        msg,
+    };
+    let raw: RawFile = toml::from_str(text)
+        .map_err(|e| err(e.span().map_or(0, |s| s.start), None, e.message().trim_end().to_string()))?;
+    if raw.rule.is_empty() {
+        return Err(err(0, None, "no [[rule]] tables".into()));
+    }
+    let dir = path.parent().unwrap_or(Path::new("."));
+    let mut rules = Vec::new();
+    for spanned in raw.rule {
+        let at = spanned.span().start;
+        let r = spanned.into_inner();
+        let value = |s: &Spanned<String>, key: &str, what: &str| err(s.span().start, Some(key), what.to_string());
+        let op = match r.op.get_ref().as_str() {
+            "query" | "find" => None,
+            s => Some(Operation::parse(s).ok_or_else(|| {
+                value(&r.op, "op", &format!("unknown operation '{s}' (query, extend, delete, replace)"))
+            })?),
+        };
+        let condition = |s: &Spanned<String>, key: &str| {
+            Condition::parse(s.get_ref()).ok_or_else(|| {
+                value(
+                    s,
+                    key,
+                    &format!("unknown boundary condition '{}' (*, eps, interior, no-connection)", s.get_ref()),
+                )
+            })
+        };
+        let default = r.boundary.as_ref().map(|b| condition(b, "boundary")).transpose()?.unwrap_or(Condition::Any);
+        let mut by_label = BTreeMap::new();
+        if let Some(faces) = &r.faces {
+            for (k, v) in faces.get_ref() {
+                let label: i32 = k.trim().parse().map_err(|_| {
+                    err(faces.span().start, Some("faces"), format!("'{k}' is not a face reference (an integer)"))
+                })?;
+                by_label.insert(label, condition(v, "faces")?);
+            }
+        }
+        let qpath = dir.join(r.query.get_ref());
+        let (qmap, labels) =
+            read_small_map(&qpath).map_err(|e| value(&r.query, "query", &format!("cannot use the query: {e}")))?;
+        if let Some(unused) = by_label.keys().find(|l| !labels.references().contains(l)) {
+            return Err(err(
+                r.faces.as_ref().map_or(at, |f| f.span().start),
+                Some("faces"),
+                format!("no boundary face of {} has reference {unused}", qpath.display()),
+            ));
+        }
+        let name = r.name.clone().unwrap_or_else(|| stem(&qpath));
+        let mut query = Query::new(&name, qmap, |_| default)
+            .map_err(|e| value(&r.query, "query", &format!("{}: {e}", qpath.display())))?;
+        let map = query.map.clone();
+        query.set_conditions(|d| labels.of(&map, d).and_then(|l| by_label.get(&l).copied()).unwrap_or(default));
+        let action = match op {
+            None => Action::Find,
+            Some(op) => {
+                let t = r
+                    .target
+                    .as_ref()
+                    .ok_or_else(|| err(at, Some("target"), format!("{} needs a target", op.name())))?;
+                let tpath = dir.join(t.get_ref());
+                let (tmap, _) =
+                    read_small_map(&tpath).map_err(|e| value(t, "target", &format!("cannot use the target: {e}")))?;
+                let plan = Plan::new(op, &mut query, &tmap)
+                    .map_err(|e| value(t, "target", &format!("{}: {e}", tpath.display())))?;
+                Action::Plan(plan)
+            }
+        };
+        let seed = r.seed.unwrap_or(0);
+        let strategy = match &r.strategy {
+            None => Strategy::Greedy,
+            Some(s) => Strategy::parse(s.get_ref(), seed).ok_or_else(|| {
+                value(s, "strategy", &format!("unknown strategy '{}' (greedy, best, random)", s.get_ref()))
+            })?,
+        };
+        let metric = match &r.metric {
+            None => None,
+            Some(s) => Some(Metric::parse(s.get_ref()).ok_or_else(|| {
+                value(s, "metric", &format!("unknown metric '{}' (hex-quality, volume)", s.get_ref()))
+            })?),
+        };
+        if strategy == Strategy::Best && metric.is_none() {
+            return Err(err(at, Some("metric"), "strategy \"best\" needs a metric (hex-quality, volume)".into()));
+        }
+        if matches!(metric, Some(Metric::HexQuality)) && query.corners.is_none() {
+            return Err(value(&r.query, "metric", "hex-quality needs a query whose shape spans a hexahedron"));
+        }
+        rules.push(Rule { name, query, action, strategy, metric, max: r.max });
+    }
+    Ok(rules)
+}
+
+fn stem(p: &Path) -> String {
+    p.file_stem().map_or_else(|| "rule".to_string(), |s| s.to_string_lossy().into_owned())
+}

@@ -1,0 +1,141 @@
+//! Matching a set of queries from every start dart of a map, in parallel (rayon over
+//! dart ranges; the map is only read). Results are in start-dart order, then prefix
+//! tree order, whatever the number of threads.
+
+use std::time::Instant;
+
+use rayon::prelude::*;
+
+use super::annotate::Annotator;
+use super::metric::Metric;
+use super::query_map::Query;
+use super::trie::PrefixTree;
+use crate::cmap::{BitSet, CMap3, Dart};
+
+/// Several queries and the prefix tree of their words.
+#[derive(Debug)]
+pub struct QuerySet {
+    pub queries: Vec<Query>,
+    pub tree: PrefixTree,
+}
+
+impl QuerySet {
+    /// The set of `queries` (their order is the query index of matches).
+    pub fn new(queries: Vec<Query>) -> QuerySet {
+        let tree = PrefixTree::new(queries.iter().map(|q| &q.word));
+        QuerySet { queries, tree }
+    }
+
+    /// An annotator large enough for every query of the set.
+    pub fn annotator(&self) -> Annotator {
+        Annotator::new(self.tree.max_darts())
+    }
+
+    /// The input darts of `m` in query label order (Algorithm 1 replayed: a match is
+    /// determined by its query and start dart).
+    ///
+    /// # Panics
+    /// If `m` is not a match of this set on `map` (the map changed since).
+    pub fn darts_of(&self, map: &CMap3, m: &Match, annot: &mut Annotator) -> Vec<Dart> {
+        let q = &self.queries[m.query as usize];
+        let ok = annot.annotate(map, &q.word, m.start, None);
+        assert!(ok, "match of query {} at dart {} no longer holds", q.name, m.start);
+        annot.matched()
+    }
+}
+
+/// One match: a query and the input dart its label 1 is annotated on.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Match {
+    pub query: u32,
+    pub start: Dart,
+    /// The metric's value (0 without a metric).
+    pub score: f64,
+}
+
+/// Options of [`find_matches`].
+#[derive(Clone, Copy, Debug, Default)]
+pub struct MatchOptions<'a> {
+    /// Keep every automorphic copy of a match instead of one per set of darts.
+    pub all_automorphisms: bool,
+    /// Score every match with this metric.
+    pub metric: Option<&'a Metric>,
+    /// Darts that count as annotated ∅ (already used).
+    pub consumed: Option<&'a BitSet>,
+}
+
+/// What [`find_matches`] found.
+#[derive(Clone, Debug, Default)]
+pub struct MatchReport {
+    pub matches: Vec<Match>,
+    /// Matches per query (after removing automorphic copies unless asked for all).
+    pub per_query: Vec<usize>,
+    /// Matches counting automorphic copies.
+    pub with_automorphisms: Vec<usize>,
+    /// Symbols checked (darts visited × 3, roughly): the annotation throughput.
+    pub steps: u64,
+    pub seconds: f64,
+}
+
+/// Start darts per parallel task: large enough to amortise scheduling, small enough
+/// to balance two to dozens of threads.
+const CHUNK: usize = 4096;
+
+/// Matches every query of `set` from every live dart of `map`.
+///
+/// ```
+/// use qmesh::build::{BuildOptions, build_volume_map};
+/// use qmesh::query::{Condition, MatchOptions, Query, QuerySet, find_matches};
+/// let opts = BuildOptions::default();
+/// let (grid, _) = build_volume_map(&qmesh::generate::hex_grid(3, 3, 3), &opts).unwrap();
+/// let (block, _) = build_volume_map(&qmesh::generate::hex_grid(2, 2, 2), &opts).unwrap();
+/// let set = QuerySet::new(vec![Query::new("block", block, |_| Condition::Any).unwrap()]);
+/// let r = find_matches(&grid, &set, &MatchOptions::default());
+/// assert_eq!(set.queries[0].automorphisms.count(), 24);
+/// assert_eq!((r.per_query[0], r.with_automorphisms[0]), (8, 8 * 24));
+/// ```
+pub fn find_matches(map: &CMap3, set: &QuerySet, opts: &MatchOptions<'_>) -> MatchReport {
+    let t = Instant::now();
+    let n = map.dart_capacity();
+    let chunks: Vec<(Vec<Match>, Vec<usize>, u64)> = (0..n.div_ceil(CHUNK))
+        .into_par_iter()
+        .map_init(
+            || set.annotator(),
+            |annot, c| {
+                let mut out = Vec::new();
+                let mut all = vec![0usize; set.queries.len()];
+                let before = annot.steps;
+                for s in (c * CHUNK).max(1)..((c + 1) * CHUNK).min(n) {
+                    let Some(start) = Dart::from_raw(s as u32).filter(|&d| map.is_live(d)) else { continue };
+                    set.tree.walk(map, annot, s as u32, opts.consumed, |q, a| {
+                        let query = &set.queries[q as usize];
+                        all[q as usize] += 1;
+                        if opts.all_automorphisms || query.automorphisms.is_canonical(map, &query.word, a) {
+                            let score = opts.metric.map_or(0.0, |m| m.evaluate(map, query, a.matched_raw()));
+                            out.push(Match { query: q, start, score });
+                        }
+                    });
+                }
+                (out, all, annot.steps - before)
+            },
+        )
+        .collect();
+    let mut r = MatchReport {
+        per_query: vec![0; set.queries.len()],
+        with_automorphisms: vec![0; set.queries.len()],
+        ..Default::default()
+    };
+    r.matches.reserve(chunks.iter().map(|c| c.0.len()).sum());
+    for (ms, all, steps) in chunks {
+        for m in &ms {
+            r.per_query[m.query as usize] += 1;
+        }
+        for (a, b) in r.with_automorphisms.iter_mut().zip(all) {
+            *a += b;
+        }
+        r.steps += steps;
+        r.matches.extend(ms);
+    }
+    r.seconds = t.elapsed().as_secs_f64();
+    r
+}

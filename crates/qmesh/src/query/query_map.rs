@@ -1,0 +1,182 @@
+//! A compiled query: the query map, its labelling and word, its automorphisms, and the
+//! geometry the metrics and the modify operations need.
+
+use super::automorphism::Automorphisms;
+use super::error::QueryError;
+use super::word::{Condition, Labelling, QueryWord};
+use crate::cmap::{CMap3, Dart};
+use crate::geom::hex_scaled_jacobian;
+
+/// A query (2025 §5): a connected map, 1- and 2-sewn everywhere, with a boundary
+/// condition on each 3-free dart.
+#[derive(Clone, Debug)]
+pub struct Query {
+    pub name: String,
+    pub map: CMap3,
+    pub labelling: Labelling,
+    pub word: QueryWord,
+    pub automorphisms: Automorphisms,
+    /// Faces of each volume as cycles of labels (volume metric).
+    volumes: Vec<Vec<Vec<u32>>>,
+    /// Labels of darts at the 8 extreme corners in VTK hexahedron order, when the
+    /// query's own geometry spans a positive hexahedron (hex-quality metric).
+    pub corners: Option<[u32; 8]>,
+}
+
+impl Query {
+    /// Compiles `map` into a query, labelled from its first dart, with `condition(d)`
+    /// for each 3-free dart.
+    ///
+    /// # Errors
+    /// A map that is invalid, empty, not connected, 1- or 2-free somewhere, or larger
+    /// than [`MAX_QUERY_DARTS`](super::MAX_QUERY_DARTS).
+    pub fn new(name: &str, map: CMap3, condition: impl FnMut(Dart) -> Condition) -> Result<Query, QueryError> {
+        let start = map.darts().next().ok_or(QueryError::Empty)?;
+        Self::from_start(name, map, start, condition)
+    }
+
+    /// As [`new`](Self::new), labelled from `start`.
+    ///
+    /// # Errors
+    /// As [`new`](Self::new).
+    pub fn from_start(
+        name: &str,
+        map: CMap3,
+        start: Dart,
+        condition: impl FnMut(Dart) -> Condition,
+    ) -> Result<Query, QueryError> {
+        if map.nb_darts() > super::MAX_QUERY_DARTS {
+            return Err(QueryError::TooLarge(map.nb_darts()));
+        }
+        let labelling = Labelling::new(&map, start)?;
+        if let Some(v) = map.is_valid().first() {
+            return Err(QueryError::Invalid(v.to_string()));
+        }
+        let word = QueryWord::new(&map, &labelling, condition);
+        let automorphisms = Automorphisms::of(&map, &labelling, &word);
+        let volumes = volume_faces(&map, &labelling);
+        let corners = hex_corners(&map, &labelling);
+        Ok(Query { name: name.to_string(), map, labelling, word, automorphisms, volumes, corners })
+    }
+
+    /// Replaces the word's conditions (the labelling is kept) and recomputes the
+    /// automorphisms.
+    pub fn set_conditions(&mut self, mut condition: impl FnMut(Dart) -> Condition) {
+        let free: Vec<usize> = self.word.free_labels().collect();
+        for k in free {
+            self.word.set_condition(k, condition(self.labelling.darts[k - 1]));
+        }
+        self.automorphisms = Automorphisms::of(&self.map, &self.labelling, &self.word);
+    }
+
+    /// Number of darts.
+    pub fn nb_darts(&self) -> usize {
+        self.word.nb_darts()
+    }
+
+    /// Number of volumes.
+    pub fn nb_volumes(&self) -> usize {
+        self.volumes.len()
+    }
+
+    /// Sum of the signed volumes of the matched input volumes (`matched[k-1]` = input
+    /// dart of label k).
+    pub fn matched_volume(&self, map: &CMap3, matched: &[u32]) -> f64 {
+        let p = |l: u32| map.position(map.vertex_of(Dart::from_raw(matched[l as usize - 1]).expect("matched dart")));
+        let mut total = 0.0;
+        for faces in &self.volumes {
+            for f in faces {
+                let a = p(f[0]);
+                for w in f[1..].windows(2) {
+                    let (b, c) = (p(w[0]), p(w[1]));
+                    let (u, v, x) = (sub(b, a), sub(c, a), a);
+                    // Right-hand normals of β1 cycles point into their volume (cmap/).
+                    total -= dot(x, cross(u, v)) / 6.0;
+                }
+            }
+        }
+        total
+    }
+
+    /// The scaled Jacobian of the hexahedron spanned by the matched corners, or None
+    /// when the query has no hexahedral corners.
+    pub fn matched_hex_quality(&self, map: &CMap3, matched: &[u32]) -> Option<f64> {
+        let c = self.corners?;
+        let pts: [[f64; 3]; 8] = std::array::from_fn(|i| {
+            map.position(map.vertex_of(Dart::from_raw(matched[c[i] as usize - 1]).expect("matched dart")))
+        });
+        Some(hex_scaled_jacobian(&pts))
+    }
+}
+
+fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    crate::geom::sub(a, b)
+}
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    crate::geom::cross(a, b)
+}
+fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    crate::geom::dot(a, b)
+}
+
+/// The faces of every volume of the query as label cycles (β1 order).
+fn volume_faces(map: &CMap3, l: &Labelling) -> Vec<Vec<Vec<u32>>> {
+    let mut seen = vec![false; map.dart_capacity()];
+    let mut out = Vec::new();
+    for &v in &l.darts {
+        if seen[v.idx()] {
+            continue;
+        }
+        let mut faces = Vec::new();
+        for d in map.orbit(v, crate::cmap::Orbit::Volume) {
+            if seen[d.idx()] {
+                continue;
+            }
+            let mut face = Vec::new();
+            let mut x = d;
+            loop {
+                seen[x.idx()] = true;
+                face.push(l.of(x));
+                x = map.next(x);
+                if x == d {
+                    break;
+                }
+            }
+            faces.push(face);
+        }
+        out.push(faces);
+    }
+    out
+}
+
+/// The query's vertices extreme in the 8 diagonal directions, in VTK hexahedron order
+/// (a dart label at each), if they are 8 distinct vertices spanning a positive hex.
+fn hex_corners(map: &CMap3, l: &Labelling) -> Option<[u32; 8]> {
+    const SIGNS: [[f64; 3]; 8] = [
+        [-1., -1., -1.],
+        [1., -1., -1.],
+        [1., 1., -1.],
+        [-1., 1., -1.],
+        [-1., -1., 1.],
+        [1., -1., 1.],
+        [1., 1., 1.],
+        [-1., 1., 1.],
+    ];
+    let pts: Vec<[f64; 3]> = l.darts.iter().map(|&d| map.point(d)).collect();
+    let c = crate::geom::centroid(pts.iter().copied());
+    let mut corners = [0u32; 8];
+    let mut ids = [0u32; 8];
+    for (i, s) in SIGNS.iter().enumerate() {
+        let best = (0..pts.len())
+            .max_by(|&a, &b| dot(sub(pts[a], c), *s).total_cmp(&dot(sub(pts[b], c), *s)).then(b.cmp(&a)))?;
+        corners[i] = best as u32 + 1;
+        ids[i] = map.vertex_of(l.darts[best]);
+    }
+    let mut sorted = ids;
+    sorted.sort_unstable();
+    if sorted.windows(2).any(|w| w[0] == w[1]) {
+        return None;
+    }
+    let p: [[f64; 3]; 8] = std::array::from_fn(|i| pts[corners[i] as usize - 1]);
+    (hex_scaled_jacobian(&p) > 0.0).then_some(corners)
+}

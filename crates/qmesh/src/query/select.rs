@@ -1,0 +1,104 @@
+//! Choosing non-overlapping matches (2025 §5.2.2): order the candidates, then take
+//! them one by one, dropping any that shares a dart with one already taken.
+//!
+//! `Greedy` takes them in start-dart order, which gives exactly the matches of the
+//! paper's greedy search (annotating the darts of each selected match with ∅ before
+//! the next start dart): a candidate found without that constraint is rejected by it
+//! exactly when it shares a dart with a selected match.
+
+use super::matcher::{Match, QuerySet};
+use crate::cmap::{BitSet, CMap3, Dart};
+
+/// In which order candidates are taken.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Strategy {
+    /// Start-dart order (then prefix-tree order).
+    Greedy,
+    /// Decreasing score (ties in start-dart order).
+    Best,
+    /// A shuffled order, reproducible from the seed.
+    Random(u64),
+}
+
+impl Strategy {
+    /// Reads `greedy`, `best` or `random` (seeded with `seed`).
+    pub fn parse(s: &str, seed: u64) -> Option<Strategy> {
+        match s {
+            "greedy" => Some(Strategy::Greedy),
+            "best" => Some(Strategy::Best),
+            "random" => Some(Strategy::Random(seed)),
+            _ => None,
+        }
+    }
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Strategy::Greedy => "greedy",
+            Strategy::Best => "best",
+            Strategy::Random(_) => "random",
+        }
+    }
+}
+
+/// A selected match with its input darts in query label order.
+#[derive(Clone, Debug)]
+pub struct Selected {
+    pub m: Match,
+    pub darts: Vec<Dart>,
+}
+
+/// Selects non-overlapping matches among `candidates` (all from [`find_matches`]
+/// on this `map`), at most `max` of them.
+///
+/// [`find_matches`]: super::find_matches
+pub fn select(
+    map: &CMap3,
+    set: &QuerySet,
+    candidates: &[Match],
+    strategy: Strategy,
+    max: Option<usize>,
+) -> Vec<Selected> {
+    let mut order: Vec<usize> = (0..candidates.len()).collect();
+    match strategy {
+        Strategy::Greedy => {}
+        Strategy::Best => order.sort_by(|&a, &b| candidates[b].score.total_cmp(&candidates[a].score)),
+        Strategy::Random(seed) => shuffle(&mut order, seed),
+    }
+    let mut used = BitSet::with_len(map.dart_capacity());
+    let mut annot = set.annotator();
+    let mut out = Vec::new();
+    for i in order {
+        if max.is_some_and(|m| out.len() >= m) {
+            break;
+        }
+        let m = candidates[i];
+        if used.get(m.start.idx()) {
+            continue;
+        }
+        let darts = set.darts_of(map, &m, &mut annot);
+        if darts.iter().any(|d| used.get(d.idx())) {
+            continue;
+        }
+        for d in &darts {
+            used.insert(d.idx());
+        }
+        out.push(Selected { m, darts });
+    }
+    out
+}
+
+/// Fisher–Yates with SplitMix64: the same order for the same seed on every platform.
+fn shuffle(v: &mut [usize], seed: u64) {
+    let mut state = seed;
+    let mut next = move || {
+        state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = state;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    };
+    for i in (1..v.len()).rev() {
+        let j = (next() % (i as u64 + 1)) as usize;
+        v.swap(i, j);
+    }
+}

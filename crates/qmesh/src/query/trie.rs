@@ -1,0 +1,150 @@
+//! Many query words at once (2025 §5.2.1): a prefix tree over the words, walked
+//! together with the input map from a start dart. The walk is depth-first with an
+//! explicit stack; before each child is tried the annotation is undone to the state of
+//! its parent, so every word is checked exactly as Algorithm 1 alone would.
+
+use super::annotate::Annotator;
+use super::word::QueryWord;
+use crate::cmap::{BitSet, CMap3};
+
+/// A node of the compressed tree: the run of symbols `symbols[run..run + len]` read
+/// on the way into it (starting at word position `depth`), its children
+/// `children[first..first + count]` (their runs start with distinct symbols), and the
+/// words it ends, `terminals[t_first..t_first + t_count]` (query indices).
+#[derive(Clone, Copy, Debug, Default)]
+struct Node {
+    run: u32,
+    len: u32,
+    depth: u32,
+    first: u32,
+    count: u32,
+    t_first: u32,
+    t_count: u32,
+}
+
+/// A prefix tree of query words, with chains of single-child nodes merged into runs so
+/// that the symbols of one word are checked in a tight loop.
+#[derive(Clone, Debug, Default)]
+pub struct PrefixTree {
+    nodes: Vec<Node>,
+    children: Vec<u32>,
+    symbols: Vec<u32>,
+    terminals: Vec<u32>,
+    max_darts: usize,
+}
+
+/// The uncompressed tree, one symbol per edge.
+#[derive(Default)]
+struct Plain {
+    children: Vec<Vec<(u32, u32)>>,
+    ends: Vec<Vec<u32>>,
+}
+
+impl PrefixTree {
+    /// The tree of `words` (word i ends at a terminal naming i).
+    pub fn new<'a>(words: impl IntoIterator<Item = &'a QueryWord>) -> PrefixTree {
+        let mut plain = Plain { children: vec![Vec::new()], ends: vec![Vec::new()] };
+        let mut max_darts = 0;
+        for (q, w) in words.into_iter().enumerate() {
+            max_darts = max_darts.max(w.nb_darts());
+            let mut node = 0usize;
+            for &s in w.ops() {
+                node = match plain.children[node].iter().find(|e| e.0 == s) {
+                    Some(&(_, c)) => c as usize,
+                    None => {
+                        let c = plain.children.len();
+                        plain.children.push(Vec::new());
+                        plain.ends.push(Vec::new());
+                        plain.children[node].push((s, c as u32));
+                        c
+                    }
+                };
+            }
+            plain.ends[node].push(q as u32);
+        }
+        let mut tree = PrefixTree { max_darts, ..Default::default() };
+        tree.nodes.push(Node::default());
+        // (compressed node, plain node it stands for, depth below it)
+        let mut todo = vec![(0usize, 0usize, 0u32)];
+        while let Some((c, p, depth)) = todo.pop() {
+            let ends = &plain.ends[p];
+            tree.nodes[c].t_first = tree.terminals.len() as u32;
+            tree.nodes[c].t_count = ends.len() as u32;
+            tree.terminals.extend_from_slice(ends);
+            let kids = &plain.children[p];
+            tree.nodes[c].first = tree.children.len() as u32;
+            tree.nodes[c].count = kids.len() as u32;
+            let first = tree.children.len();
+            tree.children.resize(first + kids.len(), 0);
+            for (j, &(sym, mut q)) in kids.iter().enumerate() {
+                let run = tree.symbols.len() as u32;
+                tree.symbols.push(sym);
+                // Follow the chain while it has one child and ends no word.
+                while plain.children[q as usize].len() == 1 && plain.ends[q as usize].is_empty() {
+                    let (s, next) = plain.children[q as usize][0];
+                    tree.symbols.push(s);
+                    q = next;
+                }
+                let len = tree.symbols.len() as u32 - run;
+                let id = tree.nodes.len();
+                tree.nodes.push(Node { run, len, depth, ..Default::default() });
+                tree.children[first + j] = id as u32;
+                todo.push((id, q as usize, depth + len));
+            }
+        }
+        tree
+    }
+
+    /// Number of nodes (the root included).
+    pub fn nb_nodes(&self) -> usize {
+        self.nodes.len()
+    }
+
+    /// The largest query, in darts.
+    pub fn max_darts(&self) -> usize {
+        self.max_darts
+    }
+
+    /// Walks the tree and the map together from input dart `start` (raw), calling
+    /// `found(query, annotator)` at every terminal reached: the annotator then holds
+    /// that query's match. `consumed` darts count as annotated ∅.
+    pub fn walk(
+        &self,
+        map: &CMap3,
+        annot: &mut Annotator,
+        start: u32,
+        consumed: Option<&BitSet>,
+        mut found: impl FnMut(u32, &Annotator),
+    ) {
+        if self.nodes[0].count == 0 || consumed.is_some_and(|c| c.get(start as usize)) {
+            return;
+        }
+        annot.begin(start);
+        // (node, next child to try, annotation state on entering the node)
+        let mut stack: Vec<(u32, u32, (usize, usize))> = Vec::with_capacity(16);
+        stack.push((0, 0, annot.save()));
+        while let Some(top) = stack.last_mut() {
+            let node = self.nodes[top.0 as usize];
+            if top.1 == node.count {
+                stack.pop();
+                continue;
+            }
+            let child = self.children[(node.first + top.1) as usize];
+            top.1 += 1;
+            if node.count > 1 {
+                annot.undo_to(top.2);
+            }
+            let c = self.nodes[child as usize];
+            let syms = &self.symbols[c.run as usize..(c.run + c.len) as usize];
+            if !annot.run(map, consumed, c.depth as usize, syms) {
+                continue;
+            }
+            for &q in &self.terminals[c.t_first as usize..(c.t_first + c.t_count) as usize] {
+                found(q, annot);
+            }
+            if c.count > 0 {
+                stack.push((child, 0, annot.save()));
+            }
+        }
+    }
+}

@@ -1,0 +1,171 @@
+//! The 2025 modify operations: extend/delete round trips, replace keeping the match's
+//! boundary, created vertices placed by mean value coordinates, rule files and their
+//! errors.
+
+mod common;
+
+use qmesh::build::{BuildOptions, build_volume_map, extract};
+use qmesh::cmap::{CMap3, Orbit};
+use qmesh::generate::hex_grid;
+use qmesh::modify::{Action, Operation, Plan, Rule, load_rules, parse_rules, run_rules};
+use qmesh::query::{Condition, MatchOptions, Query, QuerySet, find_matches};
+
+fn grid(x: usize, y: usize, z: usize) -> CMap3 {
+    build_volume_map(&hex_grid(x, y, z), &BuildOptions::default()).unwrap().0
+}
+
+fn rule(op: Operation, q: CMap3, t: &CMap3) -> Rule {
+    let mut q = Query::new("q", q, |_| Condition::Any).unwrap();
+    let plan = Plan::new(op, &mut q, t).unwrap();
+    let mut r = Rule::find(q);
+    r.action = Action::Plan(plan);
+    r
+}
+
+/// Whether `whole` is isomorphic to `m` (a query of it with ε everywhere matches).
+fn isomorphic(m: &CMap3, whole: &CMap3) -> bool {
+    let q = Query::new("whole", whole.clone(), |_| Condition::Boundary).unwrap();
+    find_matches(m, &QuerySet::new(vec![q]), &MatchOptions::default()).per_query[0] == 1
+}
+
+/// The 2×1×1 pair merged into one polyhedron with the pair's 10 boundary quads.
+fn merged_pair() -> CMap3 {
+    let mesh = hex_grid(2, 1, 1);
+    let pair = grid(2, 1, 1);
+    let faces: Vec<Vec<u32>> = pair
+        .cells(Orbit::Face)
+        .filter(|&d| pair.is_free(d, 3))
+        .map(|d| pair.orbit(d, Orbit::HalfFace).iter().map(|&e| pair.vertex_of(e)).collect())
+        .collect();
+    let mut m = CMap3::with_positions(mesh.points.clone(), 0);
+    m.make_polyhedron(&faces).unwrap();
+    assert!(m.is_valid().is_empty());
+    m
+}
+
+#[test]
+fn extend_then_delete_gives_the_map_back() {
+    let mut m = grid(1, 3, 1);
+    let one = grid(1, 1, 1);
+    let two = grid(2, 1, 1);
+    let before = m.count_cells();
+    let r = run_rules(&mut m, &[rule(Operation::Extend, one.clone(), &two)]);
+    assert!(r[0].valid, "{:?}", r[0].problem);
+    // Each of the 3 cells gets a neighbour glued on a free face: 6 volumes, χ kept.
+    assert_eq!((r[0].selected, r[0].volumes_after, r[0].darts_added), (3, 6, 72));
+    assert_eq!(m.count_cells().euler_characteristic(3), before.euler_characteristic(3));
+    let r = run_rules(&mut m, &[rule(Operation::Delete, two, &one)]);
+    assert!(r[0].valid, "{:?}", r[0].problem);
+    assert_eq!(r[0].volumes_after, 3);
+    m.compact();
+    assert!(isomorphic(&m, &grid(1, 3, 1)));
+}
+
+#[test]
+fn extend_glues_on_boundary_darts_only() {
+    // The query's darts the target glues to get ε: in a 3×3×3 grid the centre cell has
+    // no free face, so only the 26 cells with a free face are extended.
+    let mut m = grid(3, 3, 3);
+    let r = run_rules(&mut m, &[rule(Operation::Extend, grid(1, 1, 1), &grid(2, 1, 1))]);
+    assert!(r[0].valid);
+    assert_eq!(r[0].selected, 26);
+    assert_eq!(r[0].volumes_after, 27 + 26);
+}
+
+#[test]
+fn replace_keeps_the_boundary_of_each_match() {
+    let mut m = grid(4, 2, 1);
+    let before = m.count_cells();
+    let free_before = m.boundary_faces();
+    let r = run_rules(&mut m, &[rule(Operation::Replace, grid(2, 1, 1), &merged_pair())]);
+    assert!(r[0].valid, "{:?}", r[0].problem);
+    assert_eq!((r[0].selected, r[0].volumes_after), (4, 4));
+    assert_eq!(m.boundary_faces(), free_before);
+    let after = m.count_cells();
+    assert_eq!(after.vertices, before.vertices);
+    // One inner quad (4 edges… kept, the face removed) per pair: faces −4, χ kept.
+    assert_eq!(after.faces, before.faces - 4);
+    assert_eq!(after.euler_characteristic(3), before.euler_characteristic(3));
+    // Replacing back gives the grid again.
+    let r = run_rules(&mut m, &[rule(Operation::Replace, merged_pair(), &grid(2, 1, 1))]);
+    assert!(r[0].valid);
+    m.compact();
+    assert!(isomorphic(&m, &grid(4, 2, 1)));
+}
+
+/// The unit cube as 6 pyramids around its centre: same boundary, one inner vertex.
+fn six_pyramids() -> CMap3 {
+    let mut mesh = qmesh::build::IndexedMesh::new();
+    mesh.points = hex_grid(1, 1, 1).points;
+    mesh.points.push([0.5, 0.5, 0.5]);
+    for f in [[0, 1, 3, 2], [4, 6, 7, 5], [0, 4, 5, 1], [2, 3, 7, 6], [0, 2, 6, 4], [1, 5, 7, 3]] {
+        mesh.push_cell(qmesh::build::CellKind::Pyramid, &[f[0], f[1], f[2], f[3], 8], None);
+    }
+    build_volume_map(&mesh, &BuildOptions { fix_orientation: true }).unwrap().0
+}
+
+#[test]
+fn replace_places_created_vertices_by_mean_value_coordinates() {
+    // Each cell of a stretched 2×2×1 grid becomes 6 pyramids; the created apex lands
+    // at the cell's centre.
+    let mut mesh = hex_grid(2, 2, 1);
+    mesh.points.iter_mut().for_each(|p| p[2] *= 3.0);
+    let mut m = build_volume_map(&mesh, &BuildOptions::default()).unwrap().0;
+    let r = run_rules(&mut m, &[rule(Operation::Replace, grid(1, 1, 1), &six_pyramids())]);
+    assert!(r[0].valid, "{:?}", r[0].problem);
+    assert_eq!((r[0].selected, r[0].volumes_after, r[0].vertices_created), (4, 24, 4));
+    let cells = extract(&m).0;
+    assert!(cells.kinds.iter().all(|&k| k == qmesh::build::CellKind::Pyramid));
+    let q = qmesh::build::quality_by_kind(&cells);
+    assert!(q.kinds[0].1.min > 0.0, "{:?}", q.kinds);
+    let centres = cells.points.iter().filter(|p| (p[2] - 1.5).abs() < 1e-9).count();
+    assert_eq!(centres, 4);
+    for p in cells.points.iter().filter(|p| (p[2] - 1.5).abs() < 1e-9) {
+        assert!([p[0], p[1]].iter().all(|c| (c - 0.5).abs() < 1e-9 || (c - 1.5).abs() < 1e-9), "{p:?}");
+    }
+}
+
+#[test]
+fn rule_files_run_without_code() {
+    let dir = common::temp_dir("rules");
+    let write = |name: &str, m: &qmesh::build::IndexedMesh| {
+        qmesh::io::write_indexed(&dir.join(name), m, qmesh::io::Format::Vtk, &Default::default()).unwrap()
+    };
+    write("pair.vtk", &hex_grid(2, 1, 1));
+    write("one.vtk", &hex_grid(1, 1, 1));
+    std::fs::write(
+        dir.join("rules.toml"),
+        "[[rule]]\nname = \"halve\"\nop = \"delete\"\nquery = \"pair.vtk\"\ntarget = \"one.vtk\"\nstrategy = \"random\"\nseed = 3\nmax = 2\n",
+    )
+    .unwrap();
+    let rules = load_rules(&dir.join("rules.toml")).unwrap();
+    let mut m = grid(6, 1, 1);
+    let r = run_rules(&mut m, &rules);
+    assert_eq!((r[0].rule.as_str(), r[0].matches, r[0].selected, r[0].volumes_after), ("halve", 5, 2, 4));
+    assert!(r[0].valid);
+}
+
+#[test]
+fn rule_file_errors_name_the_file_line_and_key() {
+    let dir = common::temp_dir("rule-errors");
+    qmesh::io::write_indexed(&dir.join("one.vtk"), &hex_grid(1, 1, 1), qmesh::io::Format::Vtk, &Default::default())
+        .unwrap();
+    let f = dir.join("r.toml");
+    let cases: [(&str, &str); 7] = [
+        ("[[rule]]\nop = \"extend\"\nquery = \n", ":3:"),
+        ("[[rule]]\nop = \"grow\"\nquery = \"one.vtk\"\n", ":2: `op`: unknown operation 'grow'"),
+        ("[[rule]]\nop = \"query\"\n\nquery = \"missing.vtk\"\n", ":4: `query`: cannot use the query"),
+        (
+            "[[rule]]\nop = \"query\"\nquery = \"one.vtk\"\nboundary = \"maybe\"\n",
+            ":4: `boundary`: unknown boundary condition",
+        ),
+        ("[[rule]]\nop = \"extend\"\nquery = \"one.vtk\"\n", "`target`: extend needs a target"),
+        ("[[rule]]\nop = \"query\"\nquery = \"one.vtk\"\ncolour = 3\n", ":4:"),
+        ("[[rule]]\nop = \"extend\"\nquery = \"one.vtk\"\ntarget = \"one.vtk\"\n", "changes nothing"),
+    ];
+    for (text, want) in cases {
+        let e = parse_rules(&f, text).map(|_| ()).expect_err(text).to_string();
+        assert!(e.starts_with(&f.display().to_string()) && e.contains(want), "{text:?}: {e}");
+        assert!(!e.contains("Spanned") && !e.contains("{ "), "debug text in {e}");
+    }
+}

@@ -1,0 +1,291 @@
+//! The 2025 query engine: the §5.1.2 constraint table cell by cell, the Fig. 3
+//! situations, whole-map queries, prefix tree = one word at a time, parallel =
+//! sequential, and agreement with the 2022 signatures.
+
+mod common;
+
+use qmesh::build::{BuildOptions, build_volume_map};
+use qmesh::cmap::{BitSet, CMap3, Dart, Orbit};
+use qmesh::generate::{hex_grid, tet_grid};
+use qmesh::query::{Annotator, Condition, MatchOptions, Query, QueryError, QuerySet, Strategy, find_matches, select};
+use qmesh::signature::{Flags, Surface, volume_signature};
+
+fn grid(x: usize, y: usize, z: usize) -> CMap3 {
+    build_volume_map(&hex_grid(x, y, z), &BuildOptions::default()).unwrap().0
+}
+
+fn query(map: CMap3, c: Condition) -> Query {
+    Query::new("q", map, |_| c).unwrap()
+}
+
+/// Matches of `q` (one per set of darts) in `m` from every dart, one word at a time.
+fn count(m: &CMap3, q: &Query, consumed: Option<&BitSet>) -> usize {
+    let mut a = Annotator::new(q.nb_darts());
+    m.darts().filter(|&s| a.annotate(m, &q.word, s, consumed)).count()
+}
+
+/// The 2×1×1 grid with hexahedron 0's x = 0 face 3-sewn to hexahedron 1's x = 2 face:
+/// a ring of two cells, so a query pair lands on darts that are sewn to each other.
+fn ring() -> CMap3 {
+    let mut m = grid(2, 1, 1);
+    let free_face_at = |m: &CMap3, x: f64| {
+        m.darts()
+            .filter(|&d| m.is_free(d, 3))
+            .find(|&d| m.orbit(d, Orbit::HalfFace).iter().all(|&e| (m.point(e)[0] - x).abs() < 1e-9))
+            .unwrap()
+    };
+    let d1 = free_face_at(&m, 0.0);
+    let (a, b) = (m.point(d1), m.point(m.next(d1)));
+    // β3(d1) runs from b + 2x to a + 2x.
+    let d2 = m
+        .orbit(free_face_at(&m, 2.0), Orbit::HalfFace)
+        .into_iter()
+        .find(|&e| m.point(e) == [b[0] + 2.0, b[1], b[2]] && m.point(m.next(e)) == [a[0] + 2.0, a[1], a[2]])
+        .unwrap();
+    m.sew3(d1, d2).unwrap();
+    assert!(m.is_valid().is_empty());
+    m
+}
+
+/// Whether `q` matches `m` from dart 1 (the builder lays out the first cell of every
+/// grid alike, so query dart k lands on input dart k).
+fn from_first_dart(m: &CMap3, q: &Query, consumed: Option<&BitSet>) -> bool {
+    let mut a = Annotator::new(q.nb_darts());
+    a.annotate(m, &q.word, Dart::from_raw(1).unwrap(), consumed)
+}
+
+/// One hexahedron with condition `c` on its x = 1 face and `*` elsewhere.
+fn hex_with_condition_on_x1(c: Condition) -> Query {
+    let hex = grid(1, 1, 1);
+    let map = hex.clone();
+    Query::new("hex", hex, |d| {
+        if map.orbit(d, Orbit::HalfFace).iter().all(|&e| map.point(e)[0] == 1.0) { c } else { Condition::Any }
+    })
+    .unwrap()
+}
+
+#[test]
+fn constraint_table_cell_by_cell() {
+    use Condition::*;
+    let lone = grid(1, 1, 1); // the x = 1 face is 3-free: row "d_i = ε"
+    let pair = grid(2, 1, 1); // sewn to a dart outside the match: row "not annotated"
+    let mut periodic = grid(1, 1, 1); // sewn to the x = 0 face of the match: row "labelled"
+    {
+        let m = &periodic;
+        let f1 = m.darts().find(|&d| m.orbit(d, Orbit::HalfFace).iter().all(|&e| m.point(e)[0] == 1.0)).unwrap();
+        let (a, b) = (m.point(f1), m.point(m.next(f1)));
+        let f0 = m
+            .darts()
+            .find(|&e| m.point(e) == [b[0] - 1.0, b[1], b[2]] && m.point(m.next(e)) == [a[0] - 1.0, a[1], a[2]])
+            .unwrap();
+        periodic.sew3(f1, f0).unwrap();
+        assert!(periodic.is_valid().is_empty());
+    }
+    let mut consumed = BitSet::with_len(pair.dart_capacity());
+    for d in pair.darts().skip(24) {
+        consumed.insert(d.idx()); // row ∅: the second hexahedron belongs to a selected match
+    }
+    // Columns *, ε, ε̄, ↔ of the §5.1.2 table.
+    let rows: [(&str, &CMap3, Option<&BitSet>, [bool; 4]); 4] = [
+        ("ε", &lone, None, [true, true, false, true]),
+        ("not annotated", &pair, None, [true, false, true, true]),
+        ("labelled", &periodic, None, [true, false, true, false]),
+        ("∅", &pair, Some(&consumed), [true, false, true, true]),
+    ];
+    for (row, m, c, cells) in rows {
+        for (cond, want) in [Any, Boundary, Interior, NoConnection].into_iter().zip(cells) {
+            let q = hex_with_condition_on_x1(cond);
+            assert_eq!(from_first_dart(m, &q, c), want, "row {row}, column {}", cond.symbol());
+        }
+    }
+    // Column "label": ε → ×, not annotated → (a), labelled → (b) (the pair's shared
+    // face: one new dart, then the others closing on labels), ∅ → ×.
+    let q = query(pair.clone(), Any);
+    assert!(!from_first_dart(&lone, &q, None));
+    assert!(from_first_dart(&pair, &q, None));
+    assert!(!from_first_dart(&pair, &q, Some(&consumed)));
+    assert_eq!(count(&pair, &q, None), 8); // the 8 automorphisms of a 2×1×1 box
+    assert!(!from_first_dart(&periodic, &q, None));
+}
+
+#[test]
+fn no_connection_blocks_faces_glued_that_were_apart_in_the_query() {
+    // Fig. 3 (b) in 3D: the pair matches the ring with *, not with ↔.
+    let r = ring();
+    let pair = grid(2, 1, 1);
+    assert!(count(&r, &query(pair.clone(), Condition::Any), None) > 0);
+    assert!(count(&r, &query(pair.clone(), Condition::Interior), None) == 0); // y, z sides are free
+    assert_eq!(count(&r, &query(pair.clone(), Condition::NoConnection), None), 0);
+    assert!(count(&grid(4, 1, 1), &query(pair, Condition::NoConnection), None) > 0);
+}
+
+#[test]
+fn boundary_condition_blocks_matches_away_from_the_boundary() {
+    // Fig. 3 (a): a hexahedron whose faces must all be free matches only a lone one.
+    let q = query(grid(1, 1, 1), Condition::Boundary);
+    assert_eq!(count(&grid(3, 3, 3), &q, None), 0);
+    assert_eq!(count(&grid(1, 1, 1), &q, None), 24);
+    // Two hexahedra with free sides match only the ends of a 1×1×n bar… none: the
+    // bar's interior faces are sewn on both ends. A 2×1×1 bar matches whole.
+    let q = query(grid(2, 1, 1), Condition::Boundary);
+    assert_eq!(count(&grid(3, 1, 1), &q, None), 0);
+    assert_eq!(count(&grid(2, 1, 1), &q, None), 8);
+}
+
+#[test]
+fn the_whole_input_matches_and_a_larger_query_never_does() {
+    let input = grid(3, 2, 1);
+    let q = query(input.clone(), Condition::Boundary);
+    let r = find_matches(&input, &QuerySet::new(vec![q]), &MatchOptions::default());
+    assert_eq!(r.per_query[0], 1);
+    assert_eq!(r.with_automorphisms[0], 4); // a 3×2×1 box: rotations by π about its axes
+    let bigger = query(grid(4, 2, 1), Condition::Any);
+    assert_eq!(count(&input, &bigger, None), 0);
+}
+
+#[test]
+fn queries_must_be_connected_and_closed() {
+    let mut two = grid(1, 1, 1);
+    let v: Vec<u32> =
+        (0..8).map(|i| two.add_vertex([5.0 + (i & 1) as f64, ((i >> 1) & 1) as f64, (i >> 2) as f64])).collect();
+    two.make_hexahedron([v[0], v[1], v[3], v[2], v[4], v[5], v[7], v[6]]);
+    let e = Query::new("two", two, |_| Condition::Any).unwrap_err();
+    assert!(matches!(e, QueryError::NotConnected { reached: 24, total: 48, .. }), "{e}");
+    assert!(e.to_string().contains("not connected"), "{e}");
+    let mut open = CMap3::new();
+    open.set_dimension(2);
+    let v: Vec<u32> = (0..3).map(|i| open.add_vertex([i as f64, (i % 2) as f64, 0.0])).collect();
+    open.make_polygon(&v);
+    let e = Query::new("open", open, |_| Condition::Any).unwrap_err();
+    assert!(matches!(e, QueryError::Free { beta: 2, .. }), "{e}");
+    assert!(e.to_string().contains("2-free") && e.to_string().contains("face with vertices"), "{e}");
+}
+
+#[test]
+fn block_of_eight_in_a_grid_and_its_corner_variant() {
+    let g = grid(6, 5, 4);
+    let block = grid(2, 2, 2);
+    let r = find_matches(&g, &QuerySet::new(vec![query(block.clone(), Condition::Any)]), &MatchOptions::default());
+    assert_eq!(r.per_query[0], 5 * 4 * 3);
+    assert_eq!(r.with_automorphisms[0], 5 * 4 * 3 * 24);
+    // ε on the three sides through the corner at the origin: only the grid's 8 corners.
+    let mut q = query(block, Condition::Any);
+    let map = q.map.clone();
+    q.set_conditions(|d| {
+        let f = map.orbit(d, Orbit::HalfFace);
+        let on = |k: usize| f.iter().all(|&e| map.point(e)[k] == 0.0);
+        if on(0) || on(1) || on(2) { Condition::Boundary } else { Condition::Any }
+    });
+    assert_eq!(q.automorphisms.count(), 3);
+    let r = find_matches(&g, &QuerySet::new(vec![q]), &MatchOptions::default());
+    assert_eq!((r.per_query[0], r.with_automorphisms[0]), (8, 24));
+}
+
+#[test]
+fn prefix_tree_gives_the_matches_of_each_word_alone() {
+    let g = build_volume_map(&tet_grid(3, 2, 2), &BuildOptions::default()).unwrap().0;
+    let hexes = build_volume_map(&tet_grid(1, 1, 1), &BuildOptions::default()).unwrap().0;
+    // Queries cut from the tet grid: one tet, two tets of a cube, a whole cube, with
+    // different conditions (shared prefixes, different ends).
+    let mut queries = Vec::new();
+    for c in Condition::ALL {
+        queries.push(Query::new("cube", hexes.clone(), |_| c).unwrap());
+    }
+    let one =
+        build_volume_map(&qmesh::generate::tet_grid(1, 1, 1).cell_subset(&[0]), &BuildOptions::default()).unwrap().0;
+    let two =
+        build_volume_map(&qmesh::generate::tet_grid(1, 1, 1).cell_subset(&[0, 1]), &BuildOptions::default()).unwrap().0;
+    for c in [Condition::Any, Condition::NoConnection] {
+        queries.push(Query::new("one", one.clone(), |_| c).unwrap());
+        queries.push(Query::new("two", two.clone(), |_| c).unwrap());
+    }
+    let set = QuerySet::new(queries);
+    let opts = MatchOptions { all_automorphisms: true, ..Default::default() };
+    let together = find_matches(&g, &set, &opts);
+    for (i, q) in set.queries.iter().enumerate() {
+        let alone: Vec<Dart> = {
+            let mut a = Annotator::new(q.nb_darts());
+            g.darts().filter(|&s| a.annotate(&g, &q.word, s, None)).collect()
+        };
+        let from_tree: Vec<Dart> = together.matches.iter().filter(|m| m.query == i as u32).map(|m| m.start).collect();
+        assert_eq!(from_tree, alone, "query {i} ({})", q.name);
+    }
+    assert!(together.matches.len() > 100);
+}
+
+#[test]
+fn parallel_matching_equals_sequential() {
+    let g = grid(9, 7, 5);
+    let set = QuerySet::new(vec![query(grid(2, 1, 1), Condition::Any), query(grid(2, 2, 1), Condition::Interior)]);
+    let par = find_matches(&g, &set, &MatchOptions::default());
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build().unwrap();
+    let seq = pool.install(|| find_matches(&g, &set, &MatchOptions::default()));
+    assert_eq!(par.matches, seq.matches);
+    assert_eq!(par.per_query, seq.per_query);
+    let chosen = select(&g, &set, &par.matches, Strategy::Greedy, None);
+    let again = pool.install(|| select(&g, &set, &seq.matches, Strategy::Greedy, None));
+    assert_eq!(chosen.iter().map(|s| s.m).collect::<Vec<_>>(), again.iter().map(|s| s.m).collect::<Vec<_>>());
+}
+
+#[test]
+fn selection_never_overlaps_and_respects_max_and_seed() {
+    let g = grid(6, 6, 1);
+    let set = QuerySet::new(vec![query(grid(2, 1, 1), Condition::Any)]);
+    let found = find_matches(&g, &set, &MatchOptions::default());
+    for strategy in [Strategy::Greedy, Strategy::Random(7), Strategy::Random(8)] {
+        let s = select(&g, &set, &found.matches, strategy, None);
+        let mut used = std::collections::HashSet::new();
+        for m in &s {
+            assert_eq!(m.darts.len(), 48);
+            assert!(m.darts.iter().all(|d| used.insert(*d)), "{strategy:?} overlaps");
+        }
+        assert!(s.len() >= 12 && s.len() <= 18, "{strategy:?}: {}", s.len());
+    }
+    let a = select(&g, &set, &found.matches, Strategy::Random(7), Some(5));
+    let b = select(&g, &set, &found.matches, Strategy::Random(7), Some(5));
+    assert_eq!(a.len(), 5);
+    assert_eq!(a.iter().map(|s| s.m.start).collect::<Vec<_>>(), b.iter().map(|s| s.m.start).collect::<Vec<_>>());
+}
+
+#[test]
+fn best_selection_takes_the_highest_metric_first() {
+    // A grid with one column of cells stretched: volume ranks those pairs first.
+    let mut mesh = hex_grid(4, 1, 1);
+    for p in &mut mesh.points {
+        if p[0] > 3.5 {
+            p[0] = 7.0;
+        }
+    }
+    let g = build_volume_map(&mesh, &BuildOptions::default()).unwrap().0;
+    let set = QuerySet::new(vec![query(grid(2, 1, 1), Condition::Any)]);
+    let metric = qmesh::query::Metric::Volume;
+    let found = find_matches(&g, &set, &MatchOptions { metric: Some(&metric), ..Default::default() });
+    let best = select(&g, &set, &found.matches, Strategy::Best, Some(1));
+    assert!((best[0].m.score - 5.0).abs() < 1e-9, "{}", best[0].m.score);
+    let quality = qmesh::query::Metric::HexQuality;
+    let cube = query(grid(1, 1, 1), Condition::Any);
+    let mut a = Annotator::new(24);
+    assert!(a.annotate(&g, &cube.word, Dart::from_raw(1).unwrap(), None));
+    assert!((quality.evaluate(&g, &cube, a.matched_raw()) - 1.0).abs() < 1e-12);
+}
+
+#[test]
+fn single_volume_queries_agree_with_2022_signatures() {
+    let Some(dir) = common::data_dir() else { return };
+    for file in ["tet/gmsh_torus_tet.mesh", "hex/rockarm.vtk"] {
+        let m = qmesh::io::load_map(&dir.join(file), None, &BuildOptions::default()).unwrap().map;
+        // The query: the input's first volume as its own map, all `*`.
+        let first = m.darts().next().unwrap();
+        let cell = qmesh::build::extract(&m).0.cell_subset(&[0]);
+        let q = Query::new("cell", build_volume_map(&cell, &BuildOptions::default()).unwrap().0, |_| Condition::Any)
+            .unwrap();
+        let sig = volume_signature(&m, Surface::Cell, Flags::None, first).unwrap().0;
+        let by_signature = m
+            .cells(Orbit::Volume)
+            .filter(|&v| volume_signature(&m, Surface::Cell, Flags::None, v).unwrap().0 == sig)
+            .count();
+        let r = find_matches(&m, &QuerySet::new(vec![q]), &MatchOptions::default());
+        assert_eq!(r.per_query[0], by_signature, "{file}");
+        assert!(by_signature > 100, "{file}: {by_signature}");
+    }
+}
