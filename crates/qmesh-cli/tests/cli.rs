@@ -339,3 +339,50 @@ fn render_draws_shrunk_clipped_cells() {
     assert_eq!(code, 2);
     assert!(err.contains("axis 'w'"), "{err}");
 }
+
+#[test]
+fn query_and_modify_report_counts_and_refuse_bad_rules() {
+    let (grid, pair, one) = (temp("qm_grid.vtk"), temp("qm_pair.vtk"), temp("qm_one.vtk"));
+    for (f, size) in [(&grid, "5,3,2"), (&pair, "2,1,1"), (&one, "1")] {
+        assert_eq!(qmesh(&["generate", "grid", "--size", size, "-o", f.to_str().unwrap()]).0, 0);
+    }
+    let matched = temp("qm_matches.vtk");
+    let (code, out, err) =
+        qmesh(&["query", pair.to_str().unwrap(), grid.to_str().unwrap(), "--json", "-o", matched.to_str().unwrap()]);
+    assert_eq!(code, 0, "{err}");
+    let j: serde_json::Value = serde_json::from_str(&out).unwrap();
+    // Pairs along x, y and z: 4·3·2 + 5·2·2 + 5·3·1.
+    assert_eq!(j["queries"][0]["matches"], 24 + 20 + 15);
+    assert_eq!(j["queries"][0]["automorphisms"], 8);
+    let m = qmesh::io::load_map(&matched, None, &Default::default()).unwrap();
+    assert!(m.cell_arrays.iter().any(|a| a.name == "match_count"));
+    let rules = temp("qm_rules.toml");
+    std::fs::write(&rules, "[[rule]]\nop = \"delete\"\nquery = \"qm_pair.vtk\"\ntarget = \"qm_one.vtk\"\n").unwrap();
+    let out_mesh = temp("qm_out.vtk");
+    let (code, out, err) = qmesh(&[
+        "modify",
+        grid.to_str().unwrap(),
+        out_mesh.to_str().unwrap(),
+        "--rules",
+        rules.to_str().unwrap(),
+        "--json",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let j: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(j["valid"], true);
+    assert_eq!(j["rules"][0]["selected"], j["rules"][0]["modified"]);
+    assert!(j["volumes"].as_u64().unwrap() < 30);
+    // A bad key names the file and line; nothing is written, exit status 2.
+    std::fs::write(&rules, "[[rule]]\nop = \"delete\"\nquery = \"qm_pair.vtk\"\ntarget = \"nope.vtk\"\n").unwrap();
+    let _ = std::fs::remove_file(&out_mesh);
+    let (code, _, err) =
+        qmesh(&["modify", grid.to_str().unwrap(), out_mesh.to_str().unwrap(), "--rules", rules.to_str().unwrap()]);
+    assert_eq!(code, 2);
+    assert!(err.contains("qm_rules.toml:4: `target`"), "{err}");
+    assert!(!out_mesh.exists());
+    // The input is never overwritten without --force.
+    let (code, _, err) =
+        qmesh(&["modify", grid.to_str().unwrap(), grid.to_str().unwrap(), "--rules", rules.to_str().unwrap()]);
+    assert_eq!(code, 2);
+    assert!(err.contains("refusing to overwrite"), "{err}");
+}

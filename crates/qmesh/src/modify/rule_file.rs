@@ -13,6 +13,8 @@
 //! metric = "hex-quality"   # for best: hex-quality | volume
 //! max = 50                 # modify at most this many matches
 //! seed = 1                 # for random
+//! orientation = "geometric" # of automorphic matches: the image fitting the query's
+//!                           # shape and orientation best (default: smallest start dart)
 //! ```
 
 use std::collections::BTreeMap;
@@ -55,6 +57,7 @@ struct RawRule {
     metric: Option<Spanned<String>>,
     max: Option<usize>,
     seed: Option<u64>,
+    orientation: Option<Spanned<String>>,
 }
 
 /// Reads and compiles every rule of a rule file: loads the query and target meshes,
@@ -138,6 +141,14 @@ pub fn parse_rules(path: &Path, text: &str) -> Result<Vec<Rule>, RuleError> {
             .map_err(|e| value(&r.query, "query", &format!("{}: {e}", qpath.display())))?;
         let map = query.map.clone();
         query.set_conditions(|d| labels.of(&map, d).and_then(|l| by_label.get(&l).copied()).unwrap_or(default));
+        query.orient_by_geometry = match r.orientation.as_ref().map(|o| o.get_ref().as_str()) {
+            None | Some("start") => false,
+            Some("geometric") => true,
+            Some(o) => {
+                let s = r.orientation.as_ref().expect("matched Some");
+                return Err(value(s, "orientation", &format!("unknown orientation '{o}' (start, geometric)")));
+            }
+        };
         let action = match op {
             None => Action::Find,
             Some(op) => {

@@ -4,8 +4,9 @@
 //! one starting at the smallest input dart.
 
 use super::annotate::Annotator;
+use super::fit::AffineFit;
 use super::word::{Condition, Labelling, QueryWord};
-use crate::cmap::CMap3;
+use crate::cmap::{CMap3, Dart};
 
 /// One non-identity automorphism, as a permutation of labels.
 #[derive(Clone, Debug)]
@@ -62,6 +63,26 @@ impl Automorphisms {
             let j = p.image[0] as usize;
             m[j] > s || (!p.keeps_conditions && !Self::fulfils(p, map, word, annot))
         })
+    }
+
+    /// The start dart of the automorphic image of the current match (itself included)
+    /// that fulfils the conditions and whose affine fit from the query's positions is
+    /// best: smallest residual, then closest to the query's orientation.
+    pub(crate) fn oriented_start(&self, map: &CMap3, word: &QueryWord, fit: &AffineFit, annot: &Annotator) -> u32 {
+        let m = &annot.matched;
+        let pos = |d: u32| map.point(Dart::from_raw(d).expect("matched darts are not ε"));
+        let mut best = (fit.score(|l| pos(m[l as usize])), m[1]);
+        for p in &self.others {
+            if !p.keeps_conditions && !Self::fulfils(p, map, word, annot) {
+                continue;
+            }
+            let s = fit.score(|l| pos(m[p.image[l as usize - 1] as usize]));
+            let tol = 1e-9 * (1.0 + best.0.0);
+            if s.0 < best.0.0 - tol || (s.0 <= best.0.0 + tol && s.1 < best.0.1 - 1e-9) {
+                best = (s, m[p.image[0] as usize]);
+            }
+        }
+        best.1
     }
 
     /// Whether the match composed with `p` fulfils the query's conditions.

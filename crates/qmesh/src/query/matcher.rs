@@ -112,6 +112,13 @@ pub fn find_matches(map: &CMap3, set: &QuerySet, opts: &MatchOptions<'_>) -> Mat
                         all[q as usize] += 1;
                         if opts.all_automorphisms || query.automorphisms.is_canonical(map, &query.word, a) {
                             let score = opts.metric.map_or(0.0, |m| m.evaluate(map, query, a.matched_raw()));
+                            let start = match (&query.fit, query.orient_by_geometry && !opts.all_automorphisms) {
+                                (Some(fit), true) => {
+                                    let s = query.automorphisms.oriented_start(map, &query.word, fit, a);
+                                    Dart::from_raw(s).expect("matched darts are not ε")
+                                }
+                                _ => start,
+                            };
                             out.push(Match { query: q, start, score });
                         }
                     });

@@ -24,6 +24,7 @@ mod annotate;
 mod annotation;
 mod automorphism;
 mod error;
+mod fit;
 mod matcher;
 mod metric;
 mod query_map;

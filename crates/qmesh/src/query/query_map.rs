@@ -3,6 +3,7 @@
 
 use super::automorphism::Automorphisms;
 use super::error::QueryError;
+use super::fit::AffineFit;
 use super::word::{Condition, Labelling, QueryWord};
 use crate::cmap::{CMap3, Dart};
 use crate::geom::hex_scaled_jacobian;
@@ -21,6 +22,10 @@ pub struct Query {
     /// Labels of darts at the 8 extreme corners in VTK hexahedron order, when the
     /// query's own geometry spans a positive hexahedron (hex-quality metric).
     pub corners: Option<[u32; 8]>,
+    /// Among automorphic images of a match, keep the one whose geometry fits the
+    /// query best (instead of the one starting at the smallest dart).
+    pub orient_by_geometry: bool,
+    pub(crate) fit: Option<AffineFit>,
 }
 
 impl Query {
@@ -56,7 +61,18 @@ impl Query {
         let automorphisms = Automorphisms::of(&map, &labelling, &word);
         let volumes = volume_faces(&map, &labelling);
         let corners = hex_corners(&map, &labelling);
-        Ok(Query { name: name.to_string(), map, labelling, word, automorphisms, volumes, corners })
+        let fit = vertex_fit(&map, &labelling);
+        Ok(Query {
+            name: name.to_string(),
+            map,
+            labelling,
+            word,
+            automorphisms,
+            volumes,
+            corners,
+            orient_by_geometry: false,
+            fit,
+        })
     }
 
     /// Replaces the word's conditions (the labelling is kept) and recomputes the
@@ -179,4 +195,17 @@ fn hex_corners(map: &CMap3, l: &Labelling) -> Option<[u32; 8]> {
     }
     let p: [[f64; 3]; 8] = std::array::from_fn(|i| pts[corners[i] as usize - 1]);
     (hex_scaled_jacobian(&p) > 0.0).then_some(corners)
+}
+
+/// The affine-fit data of the query's vertices (one label per vertex).
+fn vertex_fit(map: &CMap3, l: &Labelling) -> Option<AffineFit> {
+    let mut seen = rustc_hash::FxHashSet::default();
+    let (mut labels, mut points) = (Vec::new(), Vec::new());
+    for (k, &d) in l.darts.iter().enumerate() {
+        if seen.insert(map.vertex_of(d)) {
+            labels.push(k as u32 + 1);
+            points.push(map.point(d));
+        }
+    }
+    AffineFit::new(labels, points)
 }

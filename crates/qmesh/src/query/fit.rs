@@ -1,0 +1,117 @@
+//! Affine fits from a query's vertex positions to a match's (beyond the paper, its §8
+//! future work): among the automorphic images of a match, the one whose fit has the
+//! smallest residual — ties broken by the fit closest to the query's own orientation —
+//! so every copy of a part is edited the same way.
+
+/// The query side of the fit, computed once: one label per query vertex, and the
+/// inverse of Σ [q 1][q 1]ᵀ over their positions.
+#[derive(Clone, Debug)]
+pub(crate) struct AffineFit {
+    labels: Vec<u32>,
+    points: Vec<[f64; 3]>,
+    inverse: [[f64; 4]; 4],
+}
+
+impl AffineFit {
+    /// None when the points do not span 3D (no unique affine map).
+    pub(crate) fn new(labels: Vec<u32>, points: Vec<[f64; 3]>) -> Option<AffineFit> {
+        let mut m = [[0.0; 4]; 4];
+        for q in &points {
+            let h = [q[0], q[1], q[2], 1.0];
+            for (i, row) in m.iter_mut().enumerate() {
+                for (j, x) in row.iter_mut().enumerate() {
+                    *x += h[i] * h[j];
+                }
+            }
+        }
+        invert(m).map(|inverse| AffineFit { labels, points, inverse })
+    }
+
+    /// (residual, ‖A − I‖²) of the least-squares affine map sending the query points to
+    /// the positions `position(label)`.
+    #[allow(clippy::needless_range_loop)] // matrix products read best with indices
+    pub(crate) fn score(&self, position: impl Fn(u32) -> [f64; 3]) -> (f64, f64) {
+        let p: Vec<[f64; 3]> = self.labels.iter().map(|&l| position(l)).collect();
+        let mut b = [[0.0; 4]; 3];
+        for (q, p) in self.points.iter().zip(&p) {
+            let h = [q[0], q[1], q[2], 1.0];
+            for i in 0..3 {
+                for j in 0..4 {
+                    b[i][j] += p[i] * h[j];
+                }
+            }
+        }
+        let mut m = [[0.0; 4]; 3];
+        for i in 0..3 {
+            for j in 0..4 {
+                m[i][j] = (0..4).map(|k| b[i][k] * self.inverse[k][j]).sum();
+            }
+        }
+        let residual = self
+            .points
+            .iter()
+            .zip(&p)
+            .map(|(q, p)| {
+                (0..3).map(|i| (m[i][0] * q[0] + m[i][1] * q[1] + m[i][2] * q[2] + m[i][3] - p[i]).powi(2)).sum::<f64>()
+            })
+            .sum();
+        let turn =
+            (0..3).map(|i| (0..3).map(|j| (m[i][j] - if i == j { 1.0 } else { 0.0 }).powi(2)).sum::<f64>()).sum();
+        (residual, turn)
+    }
+}
+
+/// Gauss–Jordan inverse with partial pivoting; None when singular.
+#[allow(clippy::needless_range_loop)]
+fn invert(mut a: [[f64; 4]; 4]) -> Option<[[f64; 4]; 4]> {
+    let mut inv = [[0.0; 4]; 4];
+    for (i, row) in inv.iter_mut().enumerate() {
+        row[i] = 1.0;
+    }
+    let scale = a.iter().flatten().fold(0.0f64, |s, x| s.max(x.abs())).max(1e-300);
+    for c in 0..4 {
+        let p = (c..4).max_by(|&x, &y| a[x][c].abs().total_cmp(&a[y][c].abs()))?;
+        if a[p][c].abs() < 1e-12 * scale {
+            return None;
+        }
+        a.swap(c, p);
+        inv.swap(c, p);
+        let d = a[c][c];
+        for j in 0..4 {
+            a[c][j] /= d;
+            inv[c][j] /= d;
+        }
+        for r in 0..4 {
+            if r != c {
+                let f = a[r][c];
+                for j in 0..4 {
+                    a[r][j] -= f * a[c][j];
+                    inv[r][j] -= f * inv[c][j];
+                }
+            }
+        }
+    }
+    Some(inv)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn fits_a_rotation_exactly_and_measures_the_turn() {
+        let q: Vec<[f64; 3]> = vec![[0., 0., 0.], [1., 0., 0.], [0., 1., 0.], [0., 0., 1.], [1., 1., 1.]];
+        let fit = AffineFit::new((1..=5).collect(), q.clone()).unwrap();
+        let (r, t) = fit.score(|l| {
+            let p = q[l as usize - 1];
+            [p[0] + 3.0, p[1], p[2]]
+        });
+        assert!(r < 1e-18 && t < 1e-18, "{r} {t}");
+        let (r, t) = fit.score(|l| {
+            let p = q[l as usize - 1];
+            [-p[1], p[0], p[2]] // a quarter turn about z
+        });
+        assert!(r < 1e-18 && (t - 4.0).abs() < 1e-9, "{r} {t}");
+        assert!(AffineFit::new(vec![1, 2, 3], vec![[0., 0., 0.], [1., 0., 0.], [0., 1., 0.]]).is_none());
+    }
+}
