@@ -354,8 +354,8 @@ fn query_and_modify_report_counts_and_refuse_bad_rules() {
     // Pairs along x, y and z: 4·3·2 + 5·2·2 + 5·3·1.
     assert_eq!(j["queries"][0]["matches"], 24 + 20 + 15);
     assert_eq!(j["queries"][0]["automorphisms"], 8);
-    let m = qmesh::io::load_map(&matched, None, &Default::default()).unwrap();
-    assert!(m.cell_arrays.iter().any(|a| a.name == "match_count"));
+    let text = std::fs::read_to_string(&matched).unwrap();
+    assert!(text.contains("match_count") && text.contains("SCALARS match "), "no match arrays written");
     let rules = temp("qm_rules.toml");
     std::fs::write(&rules, "[[rule]]\nop = \"delete\"\nquery = \"qm_pair.vtk\"\ntarget = \"qm_one.vtk\"\n").unwrap();
     let out_mesh = temp("qm_out.vtk");
