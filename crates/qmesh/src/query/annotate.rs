@@ -20,6 +20,8 @@ pub struct Annotator {
     pub(crate) table: Annotation,
     /// Symbols checked so far (a throughput counter).
     pub(crate) steps: u64,
+    /// The prefix-tree walk's stack, kept between start darts (no allocation per start).
+    pub(crate) stack: Vec<(u32, u32, (usize, usize))>,
 }
 
 impl Annotator {
@@ -28,7 +30,7 @@ impl Annotator {
         // ↔ may reserve one outside dart per query dart besides the labelled ones.
         let mut matched = Vec::with_capacity(max_darts + 1);
         matched.push(0);
-        Annotator { matched, table: Annotation::with_capacity(2 * max_darts + 2), steps: 0 }
+        Annotator { matched, table: Annotation::with_capacity(2 * max_darts + 2), steps: 0, stack: Vec::new() }
     }
 
     /// Starts a new annotation at input dart `start` (label 1).
@@ -62,7 +64,18 @@ impl Annotator {
     /// tested once per dart: a failed one only means the darts read afterwards are
     /// meaningless, and nothing they annotate survives a failure.
     #[inline]
-    pub(crate) fn run(&mut self, map: &CMap3, consumed: Option<&BitSet>, t: usize, ops: &[u32]) -> bool {
+    ///
+    /// With `prune` (a query's [`prune_table`](super::Automorphisms)), a new label that
+    /// an automorphism maps the start to, landing on a dart smaller than the start,
+    /// also ends the run: that match is found again, canonically, from that dart.
+    pub(crate) fn run(
+        &mut self,
+        map: &CMap3,
+        consumed: Option<&BitSet>,
+        t: usize,
+        ops: &[u32],
+        prune: Option<&[bool]>,
+    ) -> bool {
         let (mut k, mut i) = (t / 3 + 1, t % 3 + 1);
         if k >= self.matched.len() {
             return false; // not a word of a connected query
@@ -76,10 +89,12 @@ impl Annotator {
                 ok &= di == self.matched[op as usize];
             } else if op < FIRST_CONDITION {
                 // (a): a new dart, not ε, not annotated (nor ∅).
+                let label = op - NEW;
                 if !ok
                     || di == 0
                     || consumed.is_some_and(|c| c.get(di as usize))
-                    || !self.table.insert_new(di, op - NEW)
+                    || prune.is_some_and(|p| p[label as usize] && di < self.matched[1])
+                    || !self.table.insert_new(di, label)
                 {
                     self.steps += n as u64 + 1;
                     return false;
@@ -149,7 +164,7 @@ impl Annotator {
             return false;
         }
         self.begin(start.raw());
-        self.run(map, consumed, 0, word.ops())
+        self.run(map, consumed, 0, word.ops(), None)
     }
 
     /// The input darts of the last successful annotation, in query label order.

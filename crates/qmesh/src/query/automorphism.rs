@@ -53,6 +53,23 @@ impl Automorphisms {
         1 + self.others.len()
     }
 
+    /// For each label, whether it is the image of label 1 under an automorphism that
+    /// keeps the conditions: once such a label lands on a dart smaller than the start,
+    /// the match will be found from that dart and this start can stop.
+    pub(crate) fn prune_table(&self, nb_darts: usize) -> Vec<bool> {
+        let mut t = vec![false; nb_darts + 1];
+        for p in self.others.iter().filter(|p| p.keeps_conditions) {
+            t[p.image[0] as usize] = true;
+        }
+        t
+    }
+
+    /// How many automorphic images of the current match (itself included) fulfil the
+    /// conditions: its copies when every copy is kept.
+    pub(crate) fn valid_images(&self, map: &CMap3, word: &QueryWord, annot: &Annotator) -> usize {
+        1 + self.others.iter().filter(|p| p.keeps_conditions || Self::fulfils(p, map, word, annot)).count()
+    }
+
     /// Whether the current match of `annot` is the representative of its class: no
     /// automorphic image that also fulfils the conditions starts at a smaller dart.
     #[inline]

@@ -17,13 +17,16 @@ use crate::cmap::{BitSet, CMap3, Dart};
 pub struct QuerySet {
     pub queries: Vec<Query>,
     pub tree: PrefixTree,
+    /// Per query, the labels whose placement proves a match not canonical.
+    prune: Vec<Vec<bool>>,
 }
 
 impl QuerySet {
     /// The set of `queries` (their order is the query index of matches).
     pub fn new(queries: Vec<Query>) -> QuerySet {
         let tree = PrefixTree::new(queries.iter().map(|q| &q.word));
-        QuerySet { queries, tree }
+        let prune = queries.iter().map(|q| q.automorphisms.prune_table(q.nb_darts())).collect();
+        QuerySet { queries, tree, prune }
     }
 
     /// An annotator large enough for every query of the set.
@@ -107,10 +110,16 @@ pub fn find_matches(map: &CMap3, set: &QuerySet, opts: &MatchOptions<'_>) -> Mat
                 let before = annot.steps;
                 for s in (c * CHUNK).max(1)..((c + 1) * CHUNK).min(n) {
                     let Some(start) = Dart::from_raw(s as u32).filter(|&d| map.is_live(d)) else { continue };
-                    set.tree.walk(map, annot, s as u32, opts.consumed, |q, a| {
+                    let prune = (!opts.all_automorphisms).then_some(set.prune.as_slice());
+                    set.tree.walk(map, annot, s as u32, opts.consumed, prune, |q, a| {
                         let query = &set.queries[q as usize];
-                        all[q as usize] += 1;
+                        if opts.all_automorphisms {
+                            all[q as usize] += 1;
+                        }
                         if opts.all_automorphisms || query.automorphisms.is_canonical(map, &query.word, a) {
+                            if !opts.all_automorphisms {
+                                all[q as usize] += query.automorphisms.valid_images(map, &query.word, a);
+                            }
                             let score = opts.metric.map_or(0.0, |m| m.evaluate(map, query, a.matched_raw()));
                             let start = match (&query.fit, query.orient_by_geometry && !opts.all_automorphisms) {
                                 (Some(fit), true) => {

@@ -20,7 +20,11 @@ struct Node {
     count: u32,
     t_first: u32,
     t_count: u32,
+    /// The only query whose words pass through this node, or `MIXED`.
+    owner: u32,
 }
+
+const MIXED: u32 = u32::MAX;
 
 /// A prefix tree of query words, with chains of single-child nodes merged into runs so
 /// that the symbols of one word are checked in a tight loop.
@@ -62,6 +66,20 @@ impl PrefixTree {
             }
             plain.ends[node].push(q as u32);
         }
+        // The owner of each plain node: the one query ending in its subtree, or MIXED.
+        let mut owner = vec![u32::MAX - 1; plain.children.len()]; // u32::MAX - 1 = none yet
+        for p in (0..plain.children.len()).rev() {
+            // Children are created after their parent, so they are already known.
+            let mut o = u32::MAX - 1;
+            for &q in &plain.ends[p] {
+                o = if o == u32::MAX - 1 || o == q { q } else { MIXED };
+            }
+            for &(_, c) in &plain.children[p] {
+                let co = owner[c as usize];
+                o = if o == u32::MAX - 1 || o == co { co } else { MIXED };
+            }
+            owner[p] = o;
+        }
         let mut tree = PrefixTree { max_darts, ..Default::default() };
         tree.nodes.push(Node::default());
         // (compressed node, plain node it stands for, depth below it)
@@ -87,7 +105,7 @@ impl PrefixTree {
                 }
                 let len = tree.symbols.len() as u32 - run;
                 let id = tree.nodes.len();
-                tree.nodes.push(Node { run, len, depth, ..Default::default() });
+                tree.nodes.push(Node { run, len, depth, owner: owner[q as usize], ..Default::default() });
                 tree.children[first + j] = id as u32;
                 todo.push((id, q as usize, depth + len));
             }
@@ -107,13 +125,17 @@ impl PrefixTree {
 
     /// Walks the tree and the map together from input dart `start` (raw), calling
     /// `found(query, annotator)` at every terminal reached: the annotator then holds
-    /// that query's match. `consumed` darts count as annotated ∅.
+    /// that query's match. `consumed` darts count as annotated ∅. With `prune` (one
+    /// table per query), a branch owned by one query stops as soon as an automorphic
+    /// image of its match starts at a smaller dart (only canonical matches are then
+    /// reported).
     pub fn walk(
         &self,
         map: &CMap3,
         annot: &mut Annotator,
         start: u32,
         consumed: Option<&BitSet>,
+        prune: Option<&[Vec<bool>]>,
         mut found: impl FnMut(u32, &Annotator),
     ) {
         if self.nodes[0].count == 0 || consumed.is_some_and(|c| c.get(start as usize)) {
@@ -121,7 +143,8 @@ impl PrefixTree {
         }
         annot.begin(start);
         // (node, next child to try, annotation state on entering the node)
-        let mut stack: Vec<(u32, u32, (usize, usize))> = Vec::with_capacity(16);
+        let mut stack = std::mem::take(&mut annot.stack);
+        stack.clear();
         stack.push((0, 0, annot.save()));
         while let Some(top) = stack.last_mut() {
             let node = self.nodes[top.0 as usize];
@@ -136,7 +159,11 @@ impl PrefixTree {
             }
             let c = self.nodes[child as usize];
             let syms = &self.symbols[c.run as usize..(c.run + c.len) as usize];
-            if !annot.run(map, consumed, c.depth as usize, syms) {
+            let table = match prune {
+                Some(t) if c.owner != MIXED => Some(t[c.owner as usize].as_slice()),
+                _ => None,
+            };
+            if !annot.run(map, consumed, c.depth as usize, syms, table) {
                 continue;
             }
             for &q in &self.terminals[c.t_first as usize..(c.t_first + c.t_count) as usize] {
@@ -146,5 +173,6 @@ impl PrefixTree {
                 stack.push((child, 0, annot.save()));
             }
         }
+        annot.stack = stack;
     }
 }
