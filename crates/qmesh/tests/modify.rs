@@ -169,3 +169,29 @@ fn rule_file_errors_name_the_file_line_and_key() {
         assert!(!e.contains("Spanned") && !e.contains("{ "), "debug text in {e}");
     }
 }
+
+#[test]
+fn apply_runs_a_function_on_every_selected_match() {
+    // Query-apply (2025 §6.4): merge each selected pair of cells through their shared
+    // face with the map's own primitive; the map is validated afterwards.
+    let mut m = grid(4, 2, 1);
+    let q = Query::new("pair", grid(2, 1, 1), |_| Condition::Any).unwrap();
+    let shared: Vec<usize> =
+        q.labelling.darts.iter().enumerate().filter(|(_, d)| !q.map.is_free(**d, 3)).map(|(k, _)| k).collect();
+    let merge = move |map: &mut CMap3, _: &Query, darts: &[qmesh::cmap::Dart]| map.remove_face(darts[shared[0]]);
+    let rule = Rule { action: Action::Apply(std::sync::Arc::new(merge)), ..Rule::find(q) };
+    let r = run_rules(&mut m, &[rule]);
+    assert!(r[0].valid, "{:?}", r[0].problem);
+    assert_eq!((r[0].selected, r[0].modified, r[0].volumes_after), (4, 4, 4));
+    m.compact();
+    assert!(isomorphic(&m, &merged_pair_grid()));
+}
+
+/// The 4×2×1 grid after merging pairs along x: what `replace` with the merged pair
+/// gives, built by the replace rule itself.
+fn merged_pair_grid() -> CMap3 {
+    let mut m = grid(4, 2, 1);
+    run_rules(&mut m, &[rule(Operation::Replace, grid(2, 1, 1), &merged_pair())]);
+    m.compact();
+    m
+}

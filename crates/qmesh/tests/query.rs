@@ -289,3 +289,31 @@ fn single_volume_queries_agree_with_2022_signatures() {
         assert!(by_signature > 100, "{file}: {by_signature}");
     }
 }
+
+#[test]
+fn residual_threshold_rejects_distorted_copies_and_orientation_follows_the_query() {
+    // Shear one cell of a 3×1×1 row: its pair matches stop being affine copies.
+    let mut mesh = hex_grid(3, 1, 1);
+    for p in &mut mesh.points {
+        if p[0] == 3.0 && p[2] == 1.0 {
+            p[1] += 0.8;
+        }
+    }
+    let g = build_volume_map(&mesh, &BuildOptions::default()).unwrap().0;
+    let mut q = query(grid(2, 1, 1), Condition::Any);
+    let all = find_matches(&g, &QuerySet::new(vec![q.clone()]), &MatchOptions::default());
+    assert_eq!(all.per_query[0], 2);
+    q.max_residual = Some(1e-6);
+    let strict = find_matches(&g, &QuerySet::new(vec![q.clone()]), &MatchOptions::default());
+    assert_eq!(strict.per_query[0], 1);
+    // Geometric orientation: the kept copy's first dart is where the query's is.
+    q.max_residual = None;
+    q.orient_by_geometry = true;
+    let r = find_matches(&grid(4, 1, 1), &QuerySet::new(vec![q.clone()]), &MatchOptions::default());
+    let first = q.map.point(q.labelling.darts[0]);
+    let gm = grid(4, 1, 1);
+    for m in &r.matches {
+        let p = gm.point(m.start);
+        assert!((p[1] - first[1]).abs() < 1e-12 && (p[2] - first[2]).abs() < 1e-12, "{p:?} vs {first:?}");
+    }
+}

@@ -17,6 +17,14 @@ pub struct QueryArgs {
     /// `*`, `eps`, `interior` or `no-connection`.
     #[arg(long, default_value = "*")]
     pub boundary: String,
+    /// Of symmetric matches of a query mesh file, keep the placement fitting the query's
+    /// shape and orientation best (`geometric`) or the one starting at the smallest dart.
+    #[arg(long, default_value = "start")]
+    pub orientation: String,
+    /// Reject matches of a query mesh file whose best affine fit from the query leaves a
+    /// relative residual above this (0..1).
+    #[arg(long)]
+    pub max_residual: Option<f64>,
     /// Worker threads (default: all cores).
     #[arg(long)]
     pub threads: Option<usize>,
@@ -40,7 +48,17 @@ pub fn rules_of(path: &Path, args: &QueryArgs) -> Result<Vec<Rule>> {
         .ok_or_else(|| anyhow!("unknown --boundary '{}' (*, eps, interior, no-connection)", args.boundary))?;
     let (map, _) = read_small_map(path)?;
     let name = path.file_stem().map_or("query".into(), |s| s.to_string_lossy().into_owned());
-    let q = Query::new(&name, map, |_| c).with_context(|| format!("{}", path.display()))?;
+    let mut q = Query::new(&name, map, |_| c).with_context(|| format!("{}", path.display()))?;
+    q.orient_by_geometry = match args.orientation.as_str() {
+        "start" => false,
+        "geometric" => true,
+        o => anyhow::bail!("unknown --orientation '{o}' (start, geometric)"),
+    };
+    if let Some(r) = args.max_residual {
+        anyhow::ensure!((0.0..=1.0).contains(&r), "--max-residual takes a relative residual in 0..1, got {r}");
+        anyhow::ensure!(q.has_affine_fit(), "{}: the query's vertices do not span 3D (no affine fit)", path.display());
+        q.max_residual = Some(r);
+    }
     Ok(vec![Rule::find(q)])
 }
 

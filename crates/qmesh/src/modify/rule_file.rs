@@ -15,6 +15,8 @@
 //! seed = 1                 # for random
 //! orientation = "geometric" # of automorphic matches: the image fitting the query's
 //!                           # shape and orientation best (default: smallest start dart)
+//! max_residual = 0.01       # reject matches whose shape is not an affine copy of the
+//!                           # query's (relative residual of the best affine fit, 0..1)
 //! ```
 
 use std::collections::BTreeMap;
@@ -58,6 +60,7 @@ struct RawRule {
     max: Option<usize>,
     seed: Option<u64>,
     orientation: Option<Spanned<String>>,
+    max_residual: Option<f64>,
 }
 
 /// Reads and compiles every rule of a rule file: loads the query and target meshes,
@@ -149,6 +152,15 @@ pub fn parse_rules(path: &Path, text: &str) -> Result<Vec<Rule>, RuleError> {
                 return Err(value(s, "orientation", &format!("unknown orientation '{o}' (start, geometric)")));
             }
         };
+        if let Some(r) = r.max_residual {
+            if !(0.0..=1.0).contains(&r) {
+                return Err(err(at, Some("max_residual"), format!("{r} is not a relative residual in 0..1")));
+            }
+            if query.fit.is_none() {
+                return Err(err(at, Some("max_residual"), "the query's vertices do not span 3D: no affine fit".into()));
+            }
+        }
+        query.max_residual = r.max_residual;
         let action = match op {
             None => Action::Find,
             Some(op) => {

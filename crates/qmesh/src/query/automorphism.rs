@@ -85,7 +85,8 @@ impl Automorphisms {
     /// The start dart of the automorphic image of the current match (itself included)
     /// that fulfils the conditions and whose affine fit from the query's positions is
     /// best: smallest residual, then closest to the query's orientation.
-    pub(crate) fn oriented_start(&self, map: &CMap3, word: &QueryWord, fit: &AffineFit, annot: &Annotator) -> u32 {
+    /// Also returns that image's relative fit residual.
+    pub(crate) fn best_image(&self, map: &CMap3, word: &QueryWord, fit: &AffineFit, annot: &Annotator) -> (u32, f64) {
         let m = &annot.matched;
         let pos = |d: u32| map.point(Dart::from_raw(d).expect("matched darts are not ε"));
         let mut best = (fit.score(|l| pos(m[l as usize])), m[1]);
@@ -99,7 +100,7 @@ impl Automorphisms {
                 best = (s, m[p.image[0] as usize]);
             }
         }
-        best.1
+        (best.1, best.0.0)
     }
 
     /// Whether the match composed with `p` fulfils the query's conditions.

@@ -27,8 +27,10 @@ impl AffineFit {
         invert(m).map(|inverse| AffineFit { labels, points, inverse })
     }
 
-    /// (residual, ‖A − I‖²) of the least-squares affine map sending the query points to
-    /// the positions `position(label)`.
+    /// (relative residual, ‖A − I‖²) of the least-squares affine map A·q + t sending
+    /// the query points to the positions `position(label)`. The residual is divided by
+    /// the spread of those positions around their centroid: 0 for an affine copy of
+    /// the query, at most 1, whatever the units.
     #[allow(clippy::needless_range_loop)] // matrix products read best with indices
     pub(crate) fn score(&self, position: impl Fn(u32) -> [f64; 3]) -> (f64, f64) {
         let p: Vec<[f64; 3]> = self.labels.iter().map(|&l| position(l)).collect();

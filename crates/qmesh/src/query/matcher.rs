@@ -113,21 +113,25 @@ pub fn find_matches(map: &CMap3, set: &QuerySet, opts: &MatchOptions<'_>) -> Mat
                     let prune = (!opts.all_automorphisms).then_some(set.prune.as_slice());
                     set.tree.walk(map, annot, s as u32, opts.consumed, prune, |q, a| {
                         let query = &set.queries[q as usize];
-                        if opts.all_automorphisms {
-                            all[q as usize] += 1;
-                        }
                         if opts.all_automorphisms || query.automorphisms.is_canonical(map, &query.word, a) {
-                            if !opts.all_automorphisms {
-                                all[q as usize] += query.automorphisms.valid_images(map, &query.word, a);
-                            }
-                            let score = opts.metric.map_or(0.0, |m| m.evaluate(map, query, a.matched_raw()));
-                            let start = match (&query.fit, query.orient_by_geometry && !opts.all_automorphisms) {
-                                (Some(fit), true) => {
-                                    let s = query.automorphisms.oriented_start(map, &query.word, fit, a);
-                                    Dart::from_raw(s).expect("matched darts are not ε")
+                            let mut start = start;
+                            if let Some(fit) =
+                                query.fit.as_ref().filter(|_| query.orient_by_geometry || query.max_residual.is_some())
+                            {
+                                let (s, residual) = query.automorphisms.best_image(map, &query.word, fit, a);
+                                if query.max_residual.is_some_and(|limit| residual > limit) {
+                                    return;
                                 }
-                                _ => start,
+                                if query.orient_by_geometry && !opts.all_automorphisms {
+                                    start = Dart::from_raw(s).expect("matched darts are not ε");
+                                }
+                            }
+                            all[q as usize] += if opts.all_automorphisms {
+                                1
+                            } else {
+                                query.automorphisms.valid_images(map, &query.word, a)
                             };
+                            let score = opts.metric.map_or(0.0, |m| m.evaluate(map, query, a.matched_raw()));
                             out.push(Match { query: q, start, score });
                         }
                     });

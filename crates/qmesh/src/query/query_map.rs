@@ -25,6 +25,9 @@ pub struct Query {
     /// Among automorphic images of a match, keep the one whose geometry fits the
     /// query best (instead of the one starting at the smallest dart).
     pub orient_by_geometry: bool,
+    /// Reject matches whose best affine fit from the query leaves a relative residual
+    /// above this (0 = an affine copy of the query; see `fit.rs`).
+    pub max_residual: Option<f64>,
     pub(crate) fit: Option<AffineFit>,
 }
 
@@ -71,6 +74,7 @@ impl Query {
             volumes,
             corners,
             orient_by_geometry: false,
+            max_residual: None,
             fit,
         })
     }
@@ -83,6 +87,12 @@ impl Query {
             self.word.set_condition(k, condition(self.labelling.darts[k - 1]));
         }
         self.automorphisms = Automorphisms::of(&self.map, &self.labelling, &self.word);
+    }
+
+    /// Whether the query's vertices span 3D, so that matches can be compared with it by
+    /// an affine fit (`orient_by_geometry`, `max_residual`).
+    pub fn has_affine_fit(&self) -> bool {
+        self.fit.is_some()
     }
 
     /// Number of darts.
