@@ -12,9 +12,11 @@ mod execute;
 mod plan;
 mod rule;
 mod rule_file;
+mod volume_pattern;
 
 pub use error::ModifyError;
 pub use execute::{Executed, execute};
 pub use plan::{Operation, Plan};
 pub use rule::{Action, ApplyFn, Rule, RuleReport, run_rules};
 pub use rule_file::{RuleError, load_rules, parse_rules};
+pub use volume_pattern::VolumePattern;

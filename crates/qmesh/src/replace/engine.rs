@@ -5,8 +5,8 @@
 use std::time::Instant;
 
 use super::face::{align_face, replace_face};
-use super::volume::replace_volume;
 use crate::cmap::{CMap3, Dart, MapError, Orbit};
+use crate::modify::VolumePattern;
 use crate::pattern::{FlagRule, PatternKind, PatternSet, flag_corners_on};
 use rustc_hash::FxHashMap;
 
@@ -156,12 +156,18 @@ pub fn replace_cells(
         }
     }
     if has(PatternKind::Volume) {
+        // Each v-pattern's plan is made once, when it first matches.
+        let mut plans: Vec<Option<Option<VolumePattern>>> = vec![None; set.patterns.len()];
         for &d in volumes {
             let t = Instant::now();
             let found = find_volume(map, set, flags, d, use_signatures);
             r.query_seconds += t.elapsed().as_secs_f64();
             let t = Instant::now();
-            match found.and_then(|(i, start)| replace_volume(map, &set.patterns[i], start, flags).map(|c| (i, c))) {
+            let replaced = found.and_then(|(i, start)| {
+                let plan = plans[i].get_or_insert_with(|| VolumePattern::new(&set.patterns[i])).as_ref()?;
+                plan.replace(map, start, flags).map(|c| (i, c))
+            });
+            match replaced {
                 Some((i, created)) => {
                     r.matches[i] += 1;
                     r.volumes_replaced += 1;
