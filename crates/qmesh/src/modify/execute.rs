@@ -15,7 +15,7 @@ pub struct Executed {
 }
 
 /// Executes `plan` on the match `matched` (query label k at `matched[k - 1]`). New
-/// darts take the volume label of the match's first dart. Returns one new dart per
+/// darts take the volume label of the matched dart their plan names. Returns one new dart per
 /// created dart range (empty for delete).
 pub fn execute(map: &mut CMap3, plan: &Plan, matched: &[Dart]) -> (Executed, Vec<Dart>) {
     let at = |l: u32| matched[l as usize - 1];
@@ -32,7 +32,6 @@ pub fn execute(map: &mut CMap3, plan: &Plan, matched: &[Dart]) -> (Executed, Vec
             map.add_vertex(p)
         })
         .collect();
-    let label = map.label_of(matched[0]);
     // Remove: unsew from what stays, then delete.
     let mut gone: Vec<Dart> = plan.deleted.iter().map(|&l| at(l)).collect();
     gone.sort_unstable();
@@ -58,7 +57,7 @@ pub fn execute(map: &mut CMap3, plan: &Plan, matched: &[Dart]) -> (Executed, Vec
                 VertexOf::Created(i) => created[i as usize],
             };
             let d = map.create_dart(v);
-            map.set_label_of(d, label);
+            map.set_label_of(d, map.label_of(at(n.label_from)));
             d
         })
         .collect();
@@ -74,9 +73,9 @@ pub fn execute(map: &mut CMap3, plan: &Plan, matched: &[Dart]) -> (Executed, Vec
             }
         }
     }
-    for &(k, l) in &plan.relink2 {
-        let o = resolve(l).expect("β2 is never free in a target");
-        map.link(at(k), 2, o);
+    for &(k, i, l) in &plan.relink {
+        let o = resolve(l).expect("relinked darts are never left free");
+        map.link(at(k), i, o);
     }
     if !touched.is_empty() {
         // Vertices joined only through removed volumes come apart.

@@ -9,6 +9,7 @@
 pub mod correspondence;
 mod error;
 mod execute;
+mod face_pattern;
 mod plan;
 mod rule;
 mod rule_file;
@@ -16,6 +17,7 @@ mod volume_pattern;
 
 pub use error::ModifyError;
 pub use execute::{Executed, execute};
+pub use face_pattern::FacePattern;
 pub use plan::{Operation, Plan};
 pub use rule::{Action, ApplyFn, Rule, RuleReport, run_rules};
 pub use rule_file::{RuleError, load_rules, parse_rules};

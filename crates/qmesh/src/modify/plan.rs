@@ -65,6 +65,8 @@ pub(crate) struct NewDart {
     /// β1, β2, β3.
     pub links: [Link; 3],
     pub vertex: VertexOf,
+    /// The label whose matched dart's volume label the new dart takes.
+    pub label_from: u32,
 }
 
 /// A modification in query labels.
@@ -74,8 +76,9 @@ pub struct Plan {
     /// Labels whose matched darts are removed.
     pub(crate) deleted: Vec<u32>,
     pub(crate) new_darts: Vec<NewDart>,
-    /// β2 links of matched darts to reset (the boundary of a replaced interior).
-    pub(crate) relink2: Vec<(u32, Link)>,
+    /// Links of matched darts to reset, as (label, i, target of βi): β2 on the boundary
+    /// of a replaced interior, β1 around a replaced face.
+    pub(crate) relink: Vec<(u32, usize, Link)>,
     /// Created vertices as weights over matched labels (mean value coordinates).
     pub(crate) created: Vec<Vec<(u32, f64)>>,
 }
@@ -169,7 +172,7 @@ fn extend_plan(q: &mut Query, t: &CMap3) -> Result<Plan, ModifyError> {
                 _ => return Err(ModifyError::NotSubmap { op: Operation::Extend }),
             };
         }
-        new_darts.push(NewDart { links, vertex: vertices.of(t.vertex_of(d)) });
+        new_darts.push(NewDart { links, vertex: vertices.of(t.vertex_of(d)), label_from: 1 });
     }
     // The match darts that new volumes are glued to must be on the input's boundary.
     let attached: rustc_hash::FxHashSet<u32> = attached.into_iter().collect();
@@ -179,7 +182,7 @@ fn extend_plan(q: &mut Query, t: &CMap3) -> Result<Plan, ModifyError> {
         let k = dart_labels.of(d);
         if attached.contains(&k) { Condition::Boundary } else { word.condition(k as usize).unwrap_or(Condition::Any) }
     });
-    Ok(Plan { op: Operation::Extend, deleted: Vec::new(), new_darts, relink2: Vec::new(), created: vertices.weights })
+    Ok(Plan { op: Operation::Extend, deleted: Vec::new(), new_darts, relink: Vec::new(), created: vertices.weights })
 }
 
 fn delete_plan(q: &Query, t: &CMap3) -> Result<Plan, ModifyError> {
@@ -191,7 +194,7 @@ fn delete_plan(q: &Query, t: &CMap3) -> Result<Plan, ModifyError> {
     if deleted.is_empty() {
         return Err(ModifyError::Nothing { op: Operation::Delete });
     }
-    Ok(Plan { op: Operation::Delete, deleted, new_darts: Vec::new(), relink2: Vec::new(), created: Vec::new() })
+    Ok(Plan { op: Operation::Delete, deleted, new_darts: Vec::new(), relink: Vec::new(), created: Vec::new() })
 }
 
 fn replace_plan(q: &Query, t: &CMap3) -> Result<Plan, ModifyError> {
@@ -211,11 +214,11 @@ fn replace_plan(q: &Query, t: &CMap3) -> Result<Plan, ModifyError> {
     let mut new_darts = Vec::with_capacity(new.len());
     for &d in &new {
         let links = [1, 2, 3].map(|i| t.beta(d, i).map_or(Link::Free, link_to));
-        new_darts.push(NewDart { links, vertex: vertices.of(t.vertex_of(d)) });
+        new_darts.push(NewDart { links, vertex: vertices.of(t.vertex_of(d)), label_from: 1 });
     }
-    let relink2 = pairs
+    let relink = pairs
         .iter()
-        .map(|&(qd, td)| (q.labelling.of(qd), link_to(t.beta(td, 2).expect("targets are 2-sewn"))))
+        .map(|&(qd, td)| (q.labelling.of(qd), 2, link_to(t.beta(td, 2).expect("targets are 2-sewn"))))
         .collect();
-    Ok(Plan { op: Operation::Replace, deleted, new_darts, relink2, created: vertices.weights })
+    Ok(Plan { op: Operation::Replace, deleted, new_darts, relink, created: vertices.weights })
 }

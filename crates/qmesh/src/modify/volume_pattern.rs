@@ -46,11 +46,11 @@ impl VolumePattern {
                     Some(&l) => VertexOf::Matched(l),
                     None => VertexOf::Created(*created.get(&v)?),
                 };
-                Some(NewDart { links: [1, 2, 3].map(|i| link(pm.beta(x, i))), vertex })
+                Some(NewDart { links: [1, 2, 3].map(|i| link(pm.beta(x, i))), vertex, label_from: 1 })
             })
             .collect::<Option<Vec<_>>>()?;
         let plan =
-            Plan { op: Operation::Replace, deleted: Vec::new(), new_darts, relink2: Vec::new(), created: weights? };
+            Plan { op: Operation::Replace, deleted: Vec::new(), new_darts, relink: Vec::new(), created: weights? };
         Some(VolumePattern { plan, word: pw.word })
     }
 

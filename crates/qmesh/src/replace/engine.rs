@@ -4,9 +4,9 @@
 
 use std::time::Instant;
 
-use super::face::{align_face, replace_face};
+use super::face::align_face;
 use crate::cmap::{CMap3, Dart, MapError, Orbit};
-use crate::modify::VolumePattern;
+use crate::modify::{FacePattern, VolumePattern};
 use crate::pattern::{FlagRule, PatternKind, PatternSet, flag_corners_on};
 use rustc_hash::FxHashMap;
 
@@ -136,6 +136,7 @@ pub fn replace_cells(
     let mut coverage = Coverage::default();
     let has = |k: PatternKind| set.count(k) > 0;
     if has(PatternKind::Face) {
+        let mut plans: Vec<Option<Option<FacePattern>>> = vec![None; set.patterns.len()];
         for &d in faces {
             let t = Instant::now();
             let found = find_face(map, set, flags, d, use_signatures);
@@ -143,7 +144,9 @@ pub fn replace_cells(
             let t = Instant::now();
             match found {
                 Some((i, aligned)) => {
-                    replace_face(map, &set.patterns[i], &aligned);
+                    if let Some(plan) = plans[i].get_or_insert_with(|| FacePattern::new(&set.patterns[i])) {
+                        plan.replace(map, &aligned);
+                    }
                     r.matches[i] += 1;
                     r.faces_replaced += 1;
                 }

@@ -1,8 +1,8 @@
-//! e/f/v replacement (2022 §5): the only code that rewires darts for query-replace.
+//! e/f/v replacement (2022 §5): finds each cell's pattern and correspondence; the darts
+//! are rewired by the modify layer (`modify::FacePattern`, `modify::VolumePattern`).
 
 mod engine;
 mod face;
-mod vertices;
 mod volume;
 
 pub use engine::{ReplaceOptions, ReplaceReport, Uncovered, find_face, find_volume, query_replace, replace_cells};
