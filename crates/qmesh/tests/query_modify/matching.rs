@@ -2,7 +2,7 @@
 //! situations, whole-map queries, prefix tree = one word at a time, parallel =
 //! sequential, and agreement with the 2022 signatures.
 
-mod common;
+use crate::common;
 
 use qmesh::build::{BuildOptions, build_volume_map};
 use qmesh::cmap::{BitSet, CMap3, Dart, Orbit};

@@ -2,7 +2,7 @@
 //! boundary, created vertices placed by mean value coordinates, rule files and their
 //! errors.
 
-mod common;
+use crate::common;
 
 use qmesh::build::{BuildOptions, build_volume_map, extract};
 use qmesh::cmap::{CMap3, Orbit};
