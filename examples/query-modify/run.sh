@@ -16,51 +16,25 @@ cd out
 "$Q" generate grid --size 2,1,1 -o pair.vtk
 "$Q" generate grid --size 1 -o hex.vtk
 "$Q" generate grid --size 2 -o block.vtk
+# The unit cube's corners (Medit vertex lines) and its hexahedron, shared by the query
+# and the target below.
+cube_corners='0 0 0 0
+1 0 0 0
+1 1 0 0
+0 1 0 0
+0 0 1 0
+1 0 1 0
+1 1 1 0
+0 1 1 0'
+cube_cell='Hexahedra
+1
+1 2 3 4 5 6 7 8 0'
 # A hexahedron whose top face (reference 1) must be on the boundary …
-cat > hex_top.mesh <<'MESH'
-MeshVersionFormatted 2
-Dimension 3
-Vertices
-8
-0 0 0 0
-1 0 0 0
-1 1 0 0
-0 1 0 0
-0 0 1 0
-1 0 1 0
-1 1 1 0
-0 1 1 0
-Hexahedra
-1
-1 2 3 4 5 6 7 8 0
-Quadrilaterals
-1
-5 6 7 8 1
-End
-MESH
+printf 'MeshVersionFormatted 2\nDimension 3\nVertices\n8\n%s\n%s\nQuadrilaterals\n1\n5 6 7 8 1\nEnd\n' \
+  "$cube_corners" "$cube_cell" > hex_top.mesh
 # … and the same with a pyramid roof on that face.
-cat > hex_roof.mesh <<'MESH'
-MeshVersionFormatted 2
-Dimension 3
-Vertices
-9
-0 0 0 0
-1 0 0 0
-1 1 0 0
-0 1 0 0
-0 0 1 0
-1 0 1 0
-1 1 1 0
-0 1 1 0
-0.5 0.5 1.6 0
-Hexahedra
-1
-1 2 3 4 5 6 7 8 0
-Pyramids
-1
-5 6 7 8 9 0
-End
-MESH
+printf 'MeshVersionFormatted 2\nDimension 3\nVertices\n9\n%s\n0.5 0.5 1.6 0\n%s\nPyramids\n1\n5 6 7 8 9 0\nEnd\n' \
+  "$cube_corners" "$cube_cell" > hex_roof.mesh
 # Two hexahedra merged into one polyhedron with the pair's ten boundary quads.
 cat > pair_merged.vtk <<'VTK'
 # vtk DataFile Version 2.0
