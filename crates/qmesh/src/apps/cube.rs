@@ -63,6 +63,14 @@ pub(crate) fn rotations() -> Vec<[u8; 8]> {
     out
 }
 
+/// The 48 symmetries of the cube (the 24 rotations, then each composed with the
+/// mirror x → 1 − x) as permutations of its corners.
+pub(crate) fn symmetries() -> Vec<[u8; 8]> {
+    let r = rotations();
+    let mirrored = r.iter().map(|p| std::array::from_fn(|c| p[c ^ 1]));
+    r.iter().copied().chain(mirrored.collect::<Vec<_>>()).collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -75,6 +83,18 @@ mod tests {
         assert_eq!(set.len(), 24);
         // Each keeps edges as edges.
         for p in &r {
+            for (a, b) in edges() {
+                assert_eq!((p[a as usize] ^ p[b as usize]).count_ones(), 1);
+            }
+        }
+    }
+
+    #[test]
+    fn symmetries_are_48_distinct_cube_automorphisms() {
+        let s = symmetries();
+        let set: std::collections::BTreeSet<[u8; 8]> = s.iter().copied().collect();
+        assert_eq!(set.len(), 48);
+        for p in &s {
             for (a, b) in edges() {
                 assert_eq!((p[a as usize] ^ p[b as usize]).count_ones(), 1);
             }

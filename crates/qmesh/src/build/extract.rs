@@ -47,7 +47,7 @@ pub fn recognise_volume(map: &CMap3, d: Dart, walker: &mut OrbitWalker) -> (Cell
 }
 
 /// The VTK polyhedron face stream of any volume (faces reversed to point outward).
-fn polyhedron_stream(map: &CMap3, d: Dart, walker: &mut OrbitWalker) -> (CellKind, Vec<u32>) {
+pub fn polyhedron_stream(map: &CMap3, d: Dart, walker: &mut OrbitWalker) -> (CellKind, Vec<u32>) {
     let darts: Vec<Dart> = walker.collect(map, d, Orbit::Volume).to_vec();
     let mut in_face = rustc_hash::FxHashSet::default();
     let mut stream = vec![0u32];
@@ -125,6 +125,15 @@ pub fn volume_values(map: &CMap3, tagged: &[(Dart, u32)], default: i32) -> Vec<i
 /// or the polygons of a surface map. Points are the vertex ids in use, renumbered in
 /// increasing id order.
 pub fn extract(map: &CMap3) -> (IndexedMesh, ExtractedKinds) {
+    extract_with(map, polyhedron_stream)
+}
+
+/// As [`extract`], with `other(map, d, walker)` giving the cell of each volume that is
+/// not a standard cell (default: its polyhedron stream).
+pub fn extract_with(
+    map: &CMap3,
+    mut other: impl FnMut(&CMap3, Dart, &mut OrbitWalker) -> (CellKind, Vec<u32>),
+) -> (IndexedMesh, ExtractedKinds) {
     let mut out = IndexedMesh::new();
     let mut kinds = ExtractedKinds::default();
     let mut walker = OrbitWalker::new();
@@ -132,7 +141,10 @@ pub fn extract(map: &CMap3) -> (IndexedMesh, ExtractedKinds) {
     let mut polys: Vec<Vec<u32>> = Vec::new();
     if map.dimension() == 3 {
         for d in map.cells(Orbit::Volume) {
-            let (k, nodes) = recognise_volume(map, d, &mut walker);
+            let (k, nodes) = match standard_cell(map, d) {
+                Some((kind, nodes)) => (kind.into(), nodes[..kind.nodes()].to_vec()),
+                None => other(map, d, &mut walker),
+            };
             kinds.add(k);
             cells.push((k, nodes, map.label_of(d)));
         }

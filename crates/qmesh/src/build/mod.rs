@@ -17,8 +17,8 @@ mod volume;
 pub use conformity::{non_conformal_faces, non_conformal_faces_of};
 pub use error::{BuildError, Subject};
 pub use extract::{
-    ExtractedKinds, boundary_polygons, classify_volume, count_cell_kinds, count_kinds_of, extract, recognise_volume,
-    volume_values,
+    ExtractedKinds, boundary_polygons, classify_volume, count_cell_kinds, count_kinds_of, extract, extract_with,
+    polyhedron_stream, recognise_volume, volume_values,
 };
 pub use indexed::{CellArray, CellKind, CellValues, HEX_CORNER_BITS, IndexedMesh};
 pub use quality::{QualityByKind, QualitySummary, cell_scaled_jacobian, quality_by_kind, scaled_jacobians};

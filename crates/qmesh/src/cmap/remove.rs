@@ -1,4 +1,5 @@
-//! Removal of a face between two volumes (merging them, 2025 §6.3) and of a volume.
+//! Removal of a face between two volumes (merging them, 2025 §6.3), of an edge between
+//! two faces (merging them) and of a volume.
 
 use super::dart::Dart;
 use super::error::MapError;
@@ -53,6 +54,60 @@ impl CMap3 {
         }
         // Vertices that were joined only through the removed face come apart.
         self.split_vertex_ids(&touched);
+        Ok(())
+    }
+
+    /// Removes the edge of `d` when exactly two faces meet there (in each volume along
+    /// it), merging them into one face: the diagonal of a quadrilateral split in two
+    /// triangles, between two volumes or on the boundary.
+    ///
+    /// ```
+    /// use qmesh::build::{BuildOptions, CellKind, IndexedMesh, build_volume_map};
+    /// let mut mesh = IndexedMesh::new();
+    /// mesh.points = vec![[0., 0., 0.], [1., 0., 0.], [1., 1., 0.], [0., 1., 0.], [0., 0., 1.]];
+    /// // A square pyramid split in two tetrahedra along the base diagonal 0-2.
+    /// mesh.push_cell(CellKind::Tet, &[0, 1, 2, 4], None);
+    /// mesh.push_cell(CellKind::Tet, &[0, 2, 3, 4], None);
+    /// let (mut m, _) = build_volume_map(&mesh, &BuildOptions::default()).unwrap();
+    /// let on_diagonal = |m: &qmesh::cmap::CMap3, d| {
+    ///     let mut e = [m.vertex_of(d), m.vertex_of(m.next(d))];
+    ///     e.sort();
+    ///     e == [0, 2]
+    /// };
+    /// let inner = m.darts().find(|&d| on_diagonal(&m, d) && !m.is_free(d, 3)).unwrap();
+    /// let base = m.darts().find(|&d| on_diagonal(&m, d) && m.is_free(d, 3)).unwrap();
+    /// // Three faces meet at the diagonal: the two base triangles and the inner one.
+    /// assert!(m.remove_edge(base).is_err());
+    /// m.remove_face(inner).unwrap();
+    /// m.remove_edge(base).unwrap();
+    /// assert_eq!(m.nb_darts(), 16); // a pyramid with a quadrilateral base
+    /// assert!(m.is_valid().is_empty());
+    /// ```
+    ///
+    /// # Errors
+    /// [`MapError::EdgeNotRemovable`] when more than two faces meet at the edge, or the
+    /// two are the same face.
+    pub fn remove_edge(&mut self, d: Dart) -> Result<(), MapError> {
+        self.err_if_dead(d)?;
+        let e = self.beta(d, 2).ok_or(MapError::EdgeNotRemovable(d))?;
+        let (d3, e3) = (self.beta(d, 3), self.beta(e, 3));
+        let pairs: Vec<(Dart, Dart)> = match (d3, e3) {
+            (None, None) => vec![(d, e)],
+            (Some(x), Some(y)) if self.beta(x, 2) == Some(y) => vec![(d, e), (x, y)],
+            _ => return Err(MapError::EdgeNotRemovable(d)),
+        };
+        for &(x, y) in &pairs {
+            if self.next(x) == y || self.next(y) == x || self.with_scratch(|m, w| w.collect(m, x, Orbit::HalfFace).contains(&y)) {
+                return Err(MapError::EdgeNotRemovable(d));
+            }
+        }
+        for &(x, y) in &pairs {
+            let (px, nx, py, ny) = (self.prev(x), self.next(x), self.prev(y), self.next(y));
+            self.delete_dart(x);
+            self.delete_dart(y);
+            self.link(px, 1, ny);
+            self.link(py, 1, nx);
+        }
         Ok(())
     }
 

@@ -1,0 +1,154 @@
+//! Recombination rules (2025 §7.1): per oriented class of subdivision with a positive
+//! realisation, the query is its tetrahedra sewn together with `↔` on every 3-free
+//! dart (no folded match with fewer than 8 vertices), and the target one volume, the
+//! hexahedron with its six faces triangulated as the query's boundary.
+
+use super::{HEX_FACES, HexSplits};
+use crate::build::{BuildError, BuildOptions, CellKind, IndexedMesh, build_volume_map};
+use crate::cmap::Dart;
+use crate::modify::{ModifyError, Operation, Plan};
+use crate::query::{Condition, Query, QueryError};
+
+/// One recombination rule.
+#[derive(Clone, Debug)]
+pub struct HexRule {
+    /// Index in [`HexSplits::oriented`].
+    pub oriented: usize,
+    pub query: Query,
+    pub plan: Plan,
+    /// Per VTK node, the label of a query dart at that node.
+    pub corners: [u32; 8],
+    /// Per face of [`HEX_FACES`], the labels of the two boundary darts along its
+    /// diagonal (one in each triangle).
+    pub diagonals: [[u32; 2]; 6],
+    /// A boundary dart on an edge of the hexahedron (not a diagonal): it stays in the
+    /// hexahedron's volume whatever is merged later.
+    pub keep: u32,
+}
+
+/// Why the rules could not be built (a defect of qmesh, reported rather than hidden).
+#[derive(Debug, thiserror::Error)]
+pub enum HexRuleError {
+    #[error("subdivision class {class}: {source}")]
+    Build { class: usize, source: BuildError },
+    #[error("subdivision class {class}: {source}")]
+    Query { class: usize, source: QueryError },
+    #[error("subdivision class {class}: {source}")]
+    Plan { class: usize, source: ModifyError },
+}
+
+/// The outward boundary triangles of positively oriented tetrahedra (the faces in one
+/// tetrahedron only).
+fn boundary(tets: &[[u8; 4]]) -> Vec<[u8; 3]> {
+    let faces = |t: &[u8; 4]| [[t[0], t[2], t[1]], [t[0], t[1], t[3]], [t[1], t[2], t[3]], [t[0], t[3], t[2]]];
+    let key = |f: &[u8; 3]| f.iter().fold(0u8, |m, &c| m | 1 << c);
+    let mut count = [0u8; 256];
+    tets.iter().flat_map(faces).for_each(|f| count[key(&f) as usize] += 1);
+    tets.iter().flat_map(faces).filter(|f| count[key(f) as usize] == 1).collect()
+}
+
+/// The query mesh of a subdivision: its tetrahedra on the realisation's points.
+pub fn split_query_mesh(tets: &[[u8; 4]], points: &[[f64; 3]; 8]) -> IndexedMesh {
+    let mut m = IndexedMesh::new();
+    m.points = points.to_vec();
+    for t in tets {
+        m.push_cell(CellKind::Tet, &t.map(u32::from), None);
+    }
+    m
+}
+
+/// The target mesh: one polyhedron bounded by the subdivision's 12 boundary triangles.
+pub fn split_target_mesh(tets: &[[u8; 4]], points: &[[f64; 3]; 8]) -> IndexedMesh {
+    let mut m = IndexedMesh::new();
+    m.points = points.to_vec();
+    let tris = boundary(tets);
+    let mut stream = vec![tris.len() as u32];
+    for t in &tris {
+        stream.push(3);
+        stream.extend(t.iter().map(|&c| u32::from(c)));
+    }
+    m.push_cell(CellKind::Polyhedron, &stream, None);
+    m
+}
+
+/// One rule per oriented class that has a positive realisation (2025 §7.1: 171 classes
+/// up to symmetry, each chiral one in both mirror images).
+///
+/// # Errors
+/// Only on a defect of the generated maps (never expected; tested).
+pub fn hex_rules() -> Result<Vec<HexRule>, HexRuleError> {
+    let splits = HexSplits::get();
+    let mut rules = Vec::new();
+    for (o, class) in splits.oriented.iter().enumerate() {
+        let Some(points) = class.realization else { continue };
+        let err_class = class.class;
+        let opts = BuildOptions::default();
+        let (qmap, _) = build_volume_map(&split_query_mesh(&class.tets, &points), &opts)
+            .map_err(|source| HexRuleError::Build { class: err_class, source })?;
+        let (tmap, _) = build_volume_map(&split_target_mesh(&class.tets, &points), &opts)
+            .map_err(|source| HexRuleError::Build { class: err_class, source })?;
+        let mut query = Query::new(&format!("hex-split-{o}"), qmap, |_| Condition::NoConnection)
+            .map_err(|source| HexRuleError::Query { class: err_class, source })?;
+        let corners: [u32; 8] = std::array::from_fn(|i| {
+            query.labelling.darts.iter().position(|&d| query.map.vertex_of(d) == i as u32).expect("every node is used")
+                as u32
+                + 1
+        });
+        query.corners = Some(corners);
+        let plan = Plan::new(Operation::Replace, &mut query, &tmap)
+            .map_err(|source| HexRuleError::Plan { class: err_class, source })?;
+        let diagonals = HEX_FACES.map(|q| {
+            let on = |d: Dart, a: u8, b: u8| {
+                let (u, v) = (query.map.vertex_of(d), query.map.vertex_of(query.map.next(d)));
+                (u, v) == (a.into(), b.into()) || (u, v) == (b.into(), a.into())
+            };
+            let free: Vec<Dart> = query.labelling.darts.iter().copied().filter(|&d| query.map.is_free(d, 3)).collect();
+            let pick = |a: u8, b: u8| -> Vec<u32> {
+                free.iter().filter(|&&d| on(d, a, b)).map(|&d| query.labelling.of(d)).collect()
+            };
+            let (a, b) = (pick(q[0], q[2]), pick(q[1], q[3]));
+            let found = if a.len() == 2 { a } else { b };
+            [found[0], found[1]]
+        });
+        let on_diagonal = |l: u32| diagonals.iter().flatten().any(|&x| x == l);
+        let keep = query.word.free_labels().map(|k| k as u32).find(|&k| !on_diagonal(k)).expect("hexahedron edges");
+        rules.push(HexRule { oriented: o, query, plan, corners, diagonals, keep });
+    }
+    Ok(rules)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn one_valid_rule_per_realisable_oriented_class_with_distinct_words() {
+        let splits = HexSplits::get();
+        let rules = hex_rules().unwrap();
+        assert_eq!(rules.len(), splits.oriented.iter().filter(|o| o.realization.is_some()).count());
+        let words: rustc_hash::FxHashSet<&[u32]> = rules.iter().map(|r| r.query.word.symbols()).collect();
+        assert_eq!(words.len(), rules.len(), "two rules share a word");
+        for r in &rules {
+            let tets = splits.oriented[r.oriented].tets.len();
+            assert_eq!(r.query.nb_darts(), 12 * tets);
+            assert_eq!(r.query.nb_volumes(), tets);
+            assert!(r.query.map.is_valid().is_empty());
+            // The 36 boundary darts stay (the hexahedron's), the others go.
+            assert_eq!(r.plan.darts_removed(), 12 * tets - 36, "{}", r.query.name);
+            assert_eq!(r.plan.darts_added(), 0);
+            for (f, d) in r.diagonals.iter().enumerate() {
+                let q = HEX_FACES[f];
+                let v = |l: u32| r.query.map.vertex_of(r.query.labelling.darts[l as usize - 1]);
+                for &l in d {
+                    let mut e = [v(l), r.query.map.vertex_of(r.query.map.next(r.query.labelling.darts[l as usize - 1]))];
+                    e.sort_unstable();
+                    let mut a = [u32::from(q[0]), u32::from(q[2])];
+                    let mut b = [u32::from(q[1]), u32::from(q[3])];
+                    a.sort_unstable();
+                    b.sort_unstable();
+                    assert!(e == a || e == b);
+                }
+            }
+        }
+    }
+}

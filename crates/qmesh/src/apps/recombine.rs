@@ -1,0 +1,173 @@
+//! Tetrahedra → hexahedra recombination (2025 §7.1): every subdivision of the
+//! hexahedron into tetrahedra is a query ([`hex_rules`]), all matched at once through
+//! the prefix tree; matches are ranked by the scaled Jacobian of the hexahedron they
+//! span, taken best first without overlap (§5.2.2), and each is replaced by one
+//! volume. The shared diagonal of two recombined hexahedra (or of one on the boundary)
+//! is then removed, so their common face becomes a quadrilateral.
+
+use std::collections::BTreeMap;
+use std::sync::OnceLock;
+use std::time::Instant;
+
+use rustc_hash::FxHashMap;
+
+use super::hex_split::{HexRule, HexRuleError, HexSplits, hex_rules};
+use crate::build::{CellKind, ExtractedKinds, IndexedMesh, extract_with, polyhedron_stream};
+use crate::cmap::{CMap3, Dart, Orbit};
+use crate::modify::execute;
+use crate::query::{MatchOptions, Metric, QuerySet, Strategy, find_matches, select};
+
+/// The rules and their prefix tree, built once per process.
+struct RuleBook {
+    rules: Vec<HexRule>,
+    set: QuerySet,
+}
+
+fn rule_book() -> Result<&'static RuleBook, &'static HexRuleError> {
+    static BOOK: OnceLock<Result<RuleBook, HexRuleError>> = OnceLock::new();
+    BOOK.get_or_init(|| {
+        let rules = hex_rules()?;
+        let set = QuerySet::new(rules.iter().map(|r| r.query.clone()).collect());
+        Ok(RuleBook { rules, set })
+    })
+    .as_ref()
+}
+
+/// Options of [`recombine`].
+#[derive(Clone, Copy, Debug)]
+pub struct RecombineOptions {
+    /// `Best` (the paper's: decreasing scaled Jacobian) or `Greedy` (start-dart order).
+    pub strategy: Strategy,
+    /// Matches whose hexahedron has a scaled Jacobian at or below this are dropped.
+    pub min_quality: f64,
+}
+
+impl Default for RecombineOptions {
+    fn default() -> Self {
+        RecombineOptions { strategy: Strategy::Best, min_quality: 0.0 }
+    }
+}
+
+/// What [`recombine`] did.
+#[derive(Clone, Debug, Default, serde::Serialize)]
+pub struct RecombineReport {
+    pub tets_in: usize,
+    /// Queries in the prefix tree (oriented subdivision classes).
+    pub queries: usize,
+    /// Matches found above the quality threshold (the paper's #Q), one per set of darts.
+    pub matches: usize,
+    pub hexes: usize,
+    pub tets_left: usize,
+    /// Hexahedron faces still split in two triangles because tetrahedra are on the other side.
+    pub hex_tet_interfaces: usize,
+    /// Hexahedra with at least one such face.
+    pub hexes_with_tet_faces: usize,
+    pub query_seconds: f64,
+    pub select_seconds: f64,
+    pub replace_seconds: f64,
+    pub quality_min: Option<f64>,
+    pub quality_mean: Option<f64>,
+    /// Matches used per subdivision class (index up to the cube's 48 symmetries).
+    pub by_class: BTreeMap<usize, usize>,
+    /// Matches used per number of tetrahedra.
+    pub by_tet_count: BTreeMap<usize, usize>,
+}
+
+/// The hexahedra made by [`recombine`]: corners (vertex ids, VTK order) and a dart of
+/// each one's volume.
+#[derive(Clone, Debug, Default)]
+pub struct Recombined {
+    pub corners: Vec<[u32; 8]>,
+    pub darts: Vec<Dart>,
+}
+
+/// Recombines the tetrahedra of `map` into hexahedra in place.
+///
+/// ```
+/// use qmesh::apps::{RecombineOptions, SplitChoice, TetrahedralizeOptions, recombine, tetrahedralize};
+/// use qmesh::build::{BuildOptions, build_volume_map};
+/// let grid = qmesh::generate::hex_grid(3, 2, 2);
+/// let (tets, _) = tetrahedralize(&grid, &TetrahedralizeOptions { choice: SplitChoice::Any, seed: 7 }).unwrap();
+/// let (mut map, _) = build_volume_map(&tets, &BuildOptions::default()).unwrap();
+/// let (report, _) = recombine(&mut map, &RecombineOptions::default()).unwrap();
+/// assert_eq!((report.hexes, report.tets_left, report.hex_tet_interfaces), (12, 0, 0));
+/// assert!(map.is_valid().is_empty());
+/// ```
+///
+/// # Errors
+/// Only if the built-in rules cannot be built (a defect of qmesh).
+pub fn recombine(map: &mut CMap3, opts: &RecombineOptions) -> Result<(RecombineReport, Recombined), &'static HexRuleError> {
+    let book = rule_book()?;
+    let splits = HexSplits::get();
+    let mut report = RecombineReport {
+        tets_in: map.cells(Orbit::Volume).filter(|&d| map.face_degree(d) == 3 && is_tet(map, d)).count(),
+        queries: book.rules.len(),
+        ..Default::default()
+    };
+    let t = Instant::now();
+    let metric = Metric::HexQuality;
+    let found = find_matches(map, &book.set, &MatchOptions { metric: Some(&metric), ..Default::default() });
+    let candidates: Vec<_> = found.matches.into_iter().filter(|m| m.score > opts.min_quality).collect();
+    report.matches = candidates.len();
+    report.query_seconds = t.elapsed().as_secs_f64();
+
+    let t = Instant::now();
+    let chosen = select(map, &book.set, &candidates, opts.strategy, None);
+    report.select_seconds = t.elapsed().as_secs_f64();
+
+    let t = Instant::now();
+    let mut out = Recombined::default();
+    let mut qualities = Vec::with_capacity(chosen.len());
+    for s in &chosen {
+        let rule = &book.rules[s.m.query as usize];
+        out.corners.push(rule.corners.map(|l| map.vertex_of(s.darts[l as usize - 1])));
+        out.darts.push(s.darts[rule.keep as usize - 1]);
+        qualities.push(s.m.score);
+        execute(map, &rule.plan, &s.darts);
+        let o = &splits.oriented[rule.oriented];
+        *report.by_class.entry(o.class).or_insert(0) += 1;
+        *report.by_tet_count.entry(o.tets.len()).or_insert(0) += 1;
+    }
+    // Faces between two hexahedra (or on the boundary) lose their diagonal.
+    let mut with_tet_faces = vec![false; chosen.len()];
+    for (i, s) in chosen.iter().enumerate() {
+        let rule = &book.rules[s.m.query as usize];
+        for [a, _] in rule.diagonals {
+            let d = s.darts[a as usize - 1];
+            if map.is_live(d) && map.remove_edge(d).is_err() {
+                report.hex_tet_interfaces += 1;
+                with_tet_faces[i] = true;
+            }
+        }
+    }
+    report.replace_seconds = t.elapsed().as_secs_f64();
+    report.hexes = chosen.len();
+    report.hexes_with_tet_faces = with_tet_faces.iter().filter(|&&b| b).count();
+    report.tets_left = report.tets_in - report.by_tet_count.iter().map(|(n, c)| n * c).sum::<usize>();
+    if !qualities.is_empty() {
+        report.quality_min = qualities.iter().copied().reduce(f64::min);
+        report.quality_mean = Some(qualities.iter().sum::<f64>() / qualities.len() as f64);
+    }
+    Ok((report, out))
+}
+
+fn is_tet(map: &CMap3, d: Dart) -> bool {
+    matches!(crate::build::standard_cell(map, d), Some((crate::cmap::Standard::Tet, _)))
+}
+
+/// The cells of a recombined map: tetrahedra, hexahedra whose six faces are
+/// quadrilaterals, and the hexahedra that still meet tetrahedra on a split face,
+/// written as hexahedra (the tets' triangles then hang on their quads) or, with
+/// `conformal`, as VTK polyhedra keeping those triangles (exactly conformal).
+pub fn recombined_mesh(map: &CMap3, hexes: &Recombined, conformal: bool) -> (IndexedMesh, ExtractedKinds) {
+    let corners_of: FxHashMap<Dart, usize> = hexes.darts.iter().enumerate().map(|(i, &d)| (d, i)).collect();
+    extract_with(map, |map, d, walker| {
+        if !conformal {
+            let found = walker.collect(map, d, Orbit::Volume).iter().find_map(|x| corners_of.get(x).copied());
+            if let Some(i) = found {
+                return (CellKind::Hex, hexes.corners[i].to_vec());
+            }
+        }
+        polyhedron_stream(map, d, walker)
+    })
+}
