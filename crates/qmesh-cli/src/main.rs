@@ -42,6 +42,10 @@ enum Command {
     Conformal(cmd::conformal::Args),
     /// Tetrahedra to hexahedra: each tetrahedron into 4 hexahedra (2022 §7.4).
     Tet2hex(cmd::tet2hex::Args),
+    /// Hexahedra to tetrahedra on their corners, conformal and positive (2025 §7.1.1 data).
+    Tetrahedralize(cmd::tetrahedralize::Args),
+    /// Tetrahedra to hexahedra with every subdivision of the hexahedron as a query (2025 §7.1).
+    Recombine(cmd::recombine::Args),
     /// Marching cubes by query-replace (2022 Algorithm 6), from a surface or a field.
     MarchingCubes(cmd::marching_cubes::Args),
     /// A PNG picture: cells shrunk apart, optionally clipped, coloured by type/level/quality/label/component.
@@ -66,6 +70,8 @@ fn main() -> ExitCode {
         Command::Subdivide(a) => cmd::subdivide::run(a),
         Command::Conformal(a) => cmd::conformal::run(a),
         Command::Tet2hex(a) => cmd::tet2hex::run(a),
+        Command::Tetrahedralize(a) => cmd::tetrahedralize::run(a),
+        Command::Recombine(a) => cmd::recombine::run(a),
         Command::MarchingCubes(a) => cmd::marching_cubes::run(a),
         Command::Render(a) => cmd::render::run(a),
     };

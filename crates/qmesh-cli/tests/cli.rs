@@ -386,3 +386,26 @@ fn query_and_modify_report_counts_and_refuse_bad_rules() {
     assert_eq!(code, 2);
     assert!(err.contains("refusing to overwrite"), "{err}");
 }
+
+#[test]
+fn tetrahedralize_then_recombine_gives_the_hexahedra_back() {
+    let s = |p: &std::path::Path| p.to_str().unwrap().to_string();
+    let (grid, tets, back) = (temp("rc_grid.mesh"), temp("rc_tets.mesh"), temp("rc_back.vtk"));
+    let (code, _, err) = qmesh(&["generate", "grid", "--size", "3,2,2", "-o", &s(&grid)]);
+    assert_eq!(code, 0, "{err}");
+    let j = json_of(&["tetrahedralize", &s(&grid), "-o", &s(&tets), "--five", "--json"]);
+    assert_eq!(j["report"]["tets"], 60);
+    assert_eq!(j["report"]["bipartite"], true);
+    let j = json_of(&["recombine", &s(&tets), "-o", &s(&back), "--json"]);
+    assert_eq!(j["recombine"]["hexes"], 12);
+    assert_eq!(j["recombine"]["tets_left"], 0);
+    assert_eq!(j["cell_types"]["hex"], 12);
+    assert_eq!(j["valid"], true);
+    // The input is never overwritten without --force.
+    let (code, _, err) = qmesh(&["recombine", &s(&tets), "-o", &s(&tets)]);
+    assert_eq!(code, 2);
+    assert!(err.contains("refusing to overwrite"), "{err}");
+    let (code, _, err) = qmesh(&["tetrahedralize", &s(&tets), "-o", &s(&back)]);
+    assert_eq!(code, 2);
+    assert!(err.contains("no hexahedron"), "{err}");
+}

@@ -10,11 +10,13 @@ pub mod modify;
 pub mod patterns;
 pub mod quality;
 pub mod query;
+pub mod recombine;
 pub mod render;
 pub mod replace;
 pub mod rules;
 pub mod subdivide;
 pub mod tet2hex;
+pub mod tetrahedralize;
 pub mod validate;
 
 use std::path::PathBuf;
@@ -33,6 +35,27 @@ pub struct InputArgs {
     /// Flip cells with negative signed volume instead of only counting them.
     #[arg(long)]
     pub fix_orientation: bool,
+}
+
+/// The output of a command that writes one mesh.
+#[derive(clap::Args, Debug, Clone)]
+pub struct OutputArgs {
+    /// Output mesh (format from the extension).
+    #[arg(short, long)]
+    pub output: PathBuf,
+    /// Allow the output to be the input file.
+    #[arg(long)]
+    pub force: bool,
+}
+
+impl OutputArgs {
+    /// Refuses to overwrite `input` without `--force`.
+    pub fn check_against(&self, input: &std::path::Path) -> Result<()> {
+        if !self.force && convert::same_file(input, &self.output) {
+            anyhow::bail!("{} is the input file; refusing to overwrite it (use --force)", self.output.display());
+        }
+        Ok(())
+    }
 }
 
 /// How a long command reports: JSON for machines, progress on stderr for people.

@@ -74,8 +74,11 @@ pub fn run(a: Args) -> Result<ExitCode> {
     let map = &loaded.map;
     let set = QuerySet::new(rules.into_iter().map(|r| r.query).collect());
     let pb = crate::progress::spinner("query", a.report.quiet || a.report.json);
-    let found =
-        find_matches(map, &set, &MatchOptions { all_automorphisms: a.all, metric: metric.as_ref(), consumed: None });
+    let found = find_matches(
+        map,
+        &set,
+        &MatchOptions { all_automorphisms: a.all, metric: metric.as_ref(), ..Default::default() },
+    );
     let t = std::time::Instant::now();
     let chosen = strategy.map(|s| select(map, &set, &found.matches, s, a.max));
     let select_seconds = t.elapsed().as_secs_f64();

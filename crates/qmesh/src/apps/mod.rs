@@ -11,6 +11,7 @@ mod marching_cubes;
 mod mc_patterns;
 mod octree;
 mod recombine;
+mod recombine_swaps;
 mod subdivide;
 mod tet2hex;
 mod tetrahedralize;
@@ -18,15 +19,18 @@ mod transitions;
 
 pub use conformal::{ConformalError, ConformalReport, conformal};
 pub use generated_patterns::{GeneratedKind, generated_pattern_meshes, generated_pattern_set};
-pub use hex_split::{
-    HEX_FACES, HexRule, HexRuleError, HexSplit, HexSplits, OrientedClass, SplitClass, hex_rules, split_query_mesh, split_target_mesh,
-};
 pub use hanging::{HangingError, HangingReport, insert_hanging_vertices};
+pub use hex_split::{
+    HEX_FACES, HexRule, HexRuleError, HexSplit, HexSplits, OrientedClass, SplitClass, hex_rules, split_query_mesh,
+    split_target_mesh,
+};
 pub use marching_cubes::{McReport, marching_cubes, marching_cubes_field, marching_cubes_surface, triangulate};
 pub use mc_patterns::{mc_face_patterns, mc_pattern_set, mc_volume_patterns};
-pub use recombine::{RecombineOptions, RecombineReport, Recombined, recombine, recombined_mesh};
 pub use octree::{OctCell, Octree, RootBox};
+pub use recombine::{RecombineOptions, RecombineReport, Recombined, recombine, recombined_mesh};
 pub use subdivide::{SubdivideOptions, SubdivideReport, Subdivision, octree_around, subdivide};
 pub use tet2hex::tet_to_hex;
-pub use tetrahedralize::{SplitChoice, TetrahedralizeError, TetrahedralizeOptions, TetrahedralizeReport, tetrahedralize};
+pub use tetrahedralize::{
+    SplitChoice, TetrahedralizeError, TetrahedralizeOptions, TetrahedralizeReport, tetrahedralize,
+};
 pub use transitions::{Configuration, configuration_cell, transition_configurations};

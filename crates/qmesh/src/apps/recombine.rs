@@ -12,8 +12,9 @@ use std::time::Instant;
 use rustc_hash::FxHashMap;
 
 use super::hex_split::{HexRule, HexRuleError, HexSplits, hex_rules};
+use super::recombine_swaps::improve_by_swaps;
 use crate::build::{CellKind, ExtractedKinds, IndexedMesh, extract_with, polyhedron_stream};
-use crate::cmap::{CMap3, Dart, Orbit};
+use crate::cmap::{BitSet, CMap3, Dart, Orbit};
 use crate::modify::execute;
 use crate::query::{MatchOptions, Metric, QuerySet, Strategy, find_matches, select};
 
@@ -40,11 +41,13 @@ pub struct RecombineOptions {
     pub strategy: Strategy,
     /// Matches whose hexahedron has a scaled Jacobian at or below this are dropped.
     pub min_quality: f64,
+    /// After the selection, exchange a hexahedron for two where tetrahedra are left.
+    pub swaps: bool,
 }
 
 impl Default for RecombineOptions {
     fn default() -> Self {
-        RecombineOptions { strategy: Strategy::Best, min_quality: 0.0 }
+        RecombineOptions { strategy: Strategy::Best, min_quality: 0.0, swaps: true }
     }
 }
 
@@ -56,14 +59,24 @@ pub struct RecombineReport {
     pub queries: usize,
     /// Matches found above the quality threshold (the paper's #Q), one per set of darts.
     pub matches: usize,
+    /// Matches of any quality (before the threshold).
+    pub candidates: usize,
+    /// Symbols checked while matching (the prefix-tree walk's work).
+    pub steps: u64,
     pub hexes: usize,
     pub tets_left: usize,
     /// Hexahedron faces still split in two triangles because tetrahedra are on the other side.
     pub hex_tet_interfaces: usize,
     /// Hexahedra with at least one such face.
     pub hexes_with_tet_faces: usize,
+    /// Enumerating the subdivisions and realising them (once per process).
+    pub catalogue_seconds: f64,
+    /// Compiling the rules and their prefix tree (once per process).
+    pub rules_seconds: f64,
     pub query_seconds: f64,
     pub select_seconds: f64,
+    /// Hexahedra exchanged for two (or added) after the selection.
+    pub swaps: usize,
     pub replace_seconds: f64,
     pub quality_min: Option<f64>,
     pub quality_mean: Option<f64>,
@@ -96,23 +109,39 @@ pub struct Recombined {
 ///
 /// # Errors
 /// Only if the built-in rules cannot be built (a defect of qmesh).
-pub fn recombine(map: &mut CMap3, opts: &RecombineOptions) -> Result<(RecombineReport, Recombined), &'static HexRuleError> {
-    let book = rule_book()?;
+pub fn recombine(
+    map: &mut CMap3,
+    opts: &RecombineOptions,
+) -> Result<(RecombineReport, Recombined), &'static HexRuleError> {
+    let t = Instant::now();
     let splits = HexSplits::get();
+    let catalogue_seconds = t.elapsed().as_secs_f64();
+    let book = rule_book()?;
     let mut report = RecombineReport {
         tets_in: map.cells(Orbit::Volume).filter(|&d| map.face_degree(d) == 3 && is_tet(map, d)).count(),
         queries: book.rules.len(),
+        catalogue_seconds,
+        rules_seconds: t.elapsed().as_secs_f64() - catalogue_seconds,
         ..Default::default()
     };
     let t = Instant::now();
     let metric = Metric::HexQuality;
-    let found = find_matches(map, &book.set, &MatchOptions { metric: Some(&metric), ..Default::default() });
+    let found = find_matches(
+        map,
+        &book.set,
+        &MatchOptions { metric: Some(&metric), min_hex_quality: Some(opts.min_quality), ..Default::default() },
+    );
+    report.candidates = found.matches.len();
+    report.steps = found.steps;
     let candidates: Vec<_> = found.matches.into_iter().filter(|m| m.score > opts.min_quality).collect();
     report.matches = candidates.len();
     report.query_seconds = t.elapsed().as_secs_f64();
 
     let t = Instant::now();
-    let chosen = select(map, &book.set, &candidates, opts.strategy, None);
+    let mut chosen = select(map, &book.set, &candidates, opts.strategy, None);
+    if opts.swaps {
+        report.swaps = improve_by_swaps(map, &book.set, &candidates, &mut chosen);
+    }
     report.select_seconds = t.elapsed().as_secs_f64();
 
     let t = Instant::now();
@@ -128,13 +157,25 @@ pub fn recombine(map: &mut CMap3, opts: &RecombineOptions) -> Result<(RecombineR
         *report.by_class.entry(o.class).or_insert(0) += 1;
         *report.by_tet_count.entry(o.tets.len()).or_insert(0) += 1;
     }
-    // Faces between two hexahedra (or on the boundary) lose their diagonal.
+    // Faces between two hexahedra (or on the boundary) lose their diagonal; a face
+    // against tetrahedra keeps it, and so does a pair of triangles that lie in two
+    // faces of the hexahedron on the other side.
+    let mut diagonal = BitSet::with_len(map.dart_capacity());
+    for s in &chosen {
+        for l in book.rules[s.m.query as usize].diagonals.iter().flatten() {
+            diagonal.insert(s.darts[*l as usize - 1].idx());
+        }
+    }
     let mut with_tet_faces = vec![false; chosen.len()];
     for (i, s) in chosen.iter().enumerate() {
         let rule = &book.rules[s.m.query as usize];
         for [a, _] in rule.diagonals {
             let d = s.darts[a as usize - 1];
-            if map.is_live(d) && map.remove_edge(d).is_err() {
+            if !map.is_live(d) {
+                continue; // removed from the other side
+            }
+            let other_side_hex = map.beta(d, 3).is_none_or(|x| diagonal.get(x.idx()));
+            if !other_side_hex || map.remove_edge(d).is_err() {
                 report.hex_tet_interfaces += 1;
                 with_tet_faces[i] = true;
             }

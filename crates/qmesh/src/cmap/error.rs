@@ -15,7 +15,9 @@ pub enum MapError {
     FaceOnBoundary(Dart),
     #[error("face of dart {0} is folded onto itself (an edge of it is 2-sewn within the removed face)")]
     DegenerateFace(Dart),
-    #[error("edge of dart {0} is not between exactly two distinct faces: removing it would not merge two faces into one")]
+    #[error(
+        "edge of dart {0} is not between exactly two distinct faces: removing it would not merge two faces into one"
+    )]
     EdgeNotRemovable(Dart),
     #[error("all 32 marks are reserved")]
     NoMarkLeft,

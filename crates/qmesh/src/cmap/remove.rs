@@ -97,7 +97,10 @@ impl CMap3 {
             _ => return Err(MapError::EdgeNotRemovable(d)),
         };
         for &(x, y) in &pairs {
-            if self.next(x) == y || self.next(y) == x || self.with_scratch(|m, w| w.collect(m, x, Orbit::HalfFace).contains(&y)) {
+            if self.next(x) == y
+                || self.next(y) == x
+                || self.with_scratch(|m, w| w.collect(m, x, Orbit::HalfFace).contains(&y))
+            {
                 return Err(MapError::EdgeNotRemovable(d));
             }
         }

@@ -8,7 +8,10 @@ mod winding;
 
 pub use bvh::{Aabb, TriangleBvh, triangle_overlaps_box};
 pub use mvc::{mvc_polygon, mvc_triangles};
-pub use quality::{hex_scaled_jacobian, prism_scaled_jacobian, pyramid_scaled_jacobian, tet_scaled_jacobian};
+pub use quality::{
+    HEX_CORNER_FRAMES, corner_jacobian, hex_scaled_jacobian, prism_scaled_jacobian, pyramid_scaled_jacobian,
+    tet_scaled_jacobian,
+};
 pub use volume::{signed_volume_of_faces, signed_volume_of_map_volume, signed_volume_of_table};
 pub use winding::solid_angle;
 

@@ -17,6 +17,17 @@ fn unit_det(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> Option<f64> {
     Some(dot(a, cross(b, c)) / (la * lb * lc))
 }
 
+/// The scaled Jacobian at one corner: det of the unit edge vectors from `o` to `a`,
+/// `b`, `c` (0 when an edge has zero length). A hexahedron's scaled Jacobian is at most
+/// that of each of its corners (their frames are [`HEX_CORNER_FRAMES`]).
+pub fn corner_jacobian(o: [f64; 3], a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> f64 {
+    unit_det(sub(a, o), sub(b, o), sub(c, o)).unwrap_or(0.0)
+}
+
+/// Corner frames of a VTK hexahedron: (corner, ξ, η, ζ neighbours), right-handed for a cube.
+pub const HEX_CORNER_FRAMES: [[usize; 4]; 8] =
+    [[0, 1, 3, 4], [1, 2, 0, 5], [2, 3, 1, 6], [3, 0, 2, 7], [4, 7, 5, 0], [5, 4, 6, 1], [6, 5, 7, 2], [7, 6, 4, 3]];
+
 /// Scaled Jacobian of a hexahedron in VTK node order: the minimum, over the 8 corners
 /// and the centre (principal axes), of the determinant of unit edge vectors. 1 for a
 /// cube, ≤ 0 for an inverted corner; 0 when an edge has zero length.
@@ -29,22 +40,11 @@ pub fn hex_scaled_jacobian(p: &[[f64; 3]; 8]) -> f64 {
     let x1 = add4(d(0, 1), d(3, 2), d(4, 5), d(7, 6));
     let x2 = add4(d(0, 3), d(1, 2), d(4, 7), d(5, 6));
     let x3 = add4(d(0, 4), d(1, 5), d(2, 6), d(3, 7));
-    // Corner frames: (ξ, η, ζ) edges leaving each node, right-handed for a cube.
-    const CORNERS: [[usize; 4]; 8] = [
-        [0, 1, 3, 4],
-        [1, 2, 0, 5],
-        [2, 3, 1, 6],
-        [3, 0, 2, 7],
-        [4, 7, 5, 0],
-        [5, 4, 6, 1],
-        [6, 5, 7, 2],
-        [7, 6, 4, 3],
-    ];
     let mut min = match unit_det(x1, x2, x3) {
         Some(j) => j,
         None => return 0.0,
     };
-    for [o, a, b, c] in CORNERS {
+    for [o, a, b, c] in HEX_CORNER_FRAMES {
         match unit_det(d(o, a), d(o, b), d(o, c)) {
             Some(j) => min = min.min(j),
             None => return 0.0,

@@ -22,6 +22,8 @@ pub struct Annotator {
     pub(crate) steps: u64,
     /// The prefix-tree walk's stack, kept between start darts (no allocation per start).
     pub(crate) stack: Vec<(u32, u32, (usize, usize))>,
+    /// The walk's per-level sets of queries still alive (corner guards).
+    pub(crate) alive: Vec<u64>,
 }
 
 impl Annotator {
@@ -30,7 +32,13 @@ impl Annotator {
         // ↔ may reserve one outside dart per query dart besides the labelled ones.
         let mut matched = Vec::with_capacity(max_darts + 1);
         matched.push(0);
-        Annotator { matched, table: Annotation::with_capacity(2 * max_darts + 2), steps: 0, stack: Vec::new() }
+        Annotator {
+            matched,
+            table: Annotation::with_capacity(2 * max_darts + 2),
+            steps: 0,
+            stack: Vec::new(),
+            alive: Vec::new(),
+        }
     }
 
     /// Starts a new annotation at input dart `start` (label 1).

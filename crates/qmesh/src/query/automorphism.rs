@@ -15,6 +15,10 @@ struct Permutation {
     image: Vec<u32>,
     /// Whether it maps every 3-free dart to one with the same condition.
     keeps_conditions: bool,
+    /// For queries with hexahedral corners, whether it maps corners to corners as a
+    /// symmetry of the cube (always true otherwise): only then do its images score the
+    /// same and may stand for each other (pruning, canonical start).
+    cube: bool,
 }
 
 /// The automorphisms of a query map with boundary (free β3 mapped to free β3).
@@ -37,7 +41,7 @@ impl Automorphisms {
             let image: Vec<u32> = a.matched_raw().iter().map(|&d| labelling.label[d as usize]).collect();
             let keeps_conditions =
                 word.free_labels().all(|k| word.condition(k) == word.condition(image[k - 1] as usize));
-            others.push(Permutation { image, keeps_conditions });
+            others.push(Permutation { image, keeps_conditions, cube: true });
         }
         Automorphisms { others }
     }
@@ -46,6 +50,24 @@ impl Automorphisms {
     /// times the query matches the same input darts.
     pub fn count(&self) -> usize {
         1 + self.others.iter().filter(|p| p.keeps_conditions).count()
+    }
+
+    /// Keeps as equivalent only the automorphisms that move the hexahedral `corners`
+    /// (labels at VTK nodes) as a symmetry of the cube would: another automorphism of
+    /// the tetrahedra reads a different hexahedron on the same darts, with another
+    /// quality, so its images are matches of their own.
+    pub(crate) fn restrict_to_corner_symmetries(&mut self, map: &CMap3, labelling: &Labelling, corners: &[u32; 8]) {
+        const EDGES: [[usize; 2]; 12] =
+            [[0, 1], [1, 2], [2, 3], [3, 0], [4, 5], [5, 6], [6, 7], [7, 4], [0, 4], [1, 5], [2, 6], [3, 7]];
+        let vertex = |l: u32| map.vertex_of(labelling.darts[l as usize - 1]);
+        let node_of = |v: u32| (0..8).find(|&i| vertex(corners[i]) == v);
+        for p in &mut self.others {
+            let moved: Option<Vec<usize>> = (0..8).map(|i| node_of(vertex(p.image[corners[i] as usize - 1]))).collect();
+            let cube = moved.is_some_and(|m| {
+                EDGES.iter().all(|&[a, b]| EDGES.iter().any(|&[x, y]| [m[a], m[b]] == [x, y] || [m[a], m[b]] == [y, x]))
+            });
+            p.cube = cube;
+        }
     }
 
     /// Automorphisms of the bare map (conditions ignored), identity included.
@@ -58,7 +80,7 @@ impl Automorphisms {
     /// the match will be found from that dart and this start can stop.
     pub(crate) fn prune_table(&self, nb_darts: usize) -> Vec<bool> {
         let mut t = vec![false; nb_darts + 1];
-        for p in self.others.iter().filter(|p| p.keeps_conditions) {
+        for p in self.others.iter().filter(|p| p.keeps_conditions && p.cube) {
             t[p.image[0] as usize] = true;
         }
         t
@@ -78,7 +100,7 @@ impl Automorphisms {
         let s = m[1];
         self.others.iter().all(|p| {
             let j = p.image[0] as usize;
-            m[j] > s || (!p.keeps_conditions && !Self::fulfils(p, map, word, annot))
+            m[j] > s || !p.cube || (!p.keeps_conditions && !Self::fulfils(p, map, word, annot))
         })
     }
 

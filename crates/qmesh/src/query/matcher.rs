@@ -7,6 +7,7 @@ use std::time::Instant;
 use rayon::prelude::*;
 
 use super::annotate::Annotator;
+use super::guard::CornerGuards;
 use super::metric::Metric;
 use super::query_map::Query;
 use super::trie::PrefixTree;
@@ -19,6 +20,7 @@ pub struct QuerySet {
     pub tree: PrefixTree,
     /// Per query, the labels whose placement proves a match not canonical.
     prune: Vec<Vec<bool>>,
+    guards: CornerGuards,
 }
 
 impl QuerySet {
@@ -26,7 +28,8 @@ impl QuerySet {
     pub fn new(queries: Vec<Query>) -> QuerySet {
         let tree = PrefixTree::new(queries.iter().map(|q| &q.word));
         let prune = queries.iter().map(|q| q.automorphisms.prune_table(q.nb_darts())).collect();
-        QuerySet { queries, tree, prune }
+        let guards = CornerGuards::new(&tree, &queries);
+        QuerySet { queries, tree, prune, guards }
     }
 
     /// An annotator large enough for every query of the set.
@@ -65,6 +68,10 @@ pub struct MatchOptions<'a> {
     pub metric: Option<&'a Metric>,
     /// Darts that count as annotated ∅ (already used).
     pub consumed: Option<&'a BitSet>,
+    /// Only matches whose hexahedron (queries with hexahedral corners) has a scaled
+    /// Jacobian above this: each corner is checked as soon as it is matched, and the
+    /// walk leaves a branch when every query through it has a corner at or below.
+    pub min_hex_quality: Option<f64>,
 }
 
 /// What [`find_matches`] found.
@@ -111,8 +118,14 @@ pub fn find_matches(map: &CMap3, set: &QuerySet, opts: &MatchOptions<'_>) -> Mat
                 for s in (c * CHUNK).max(1)..((c + 1) * CHUNK).min(n) {
                     let Some(start) = Dart::from_raw(s as u32).filter(|&d| map.is_live(d)) else { continue };
                     let prune = (!opts.all_automorphisms).then_some(set.prune.as_slice());
-                    set.tree.walk(map, annot, s as u32, opts.consumed, prune, |q, a| {
+                    let guard = opts.min_hex_quality.map(|t| (&set.guards, t));
+                    set.tree.walk(map, annot, s as u32, opts.consumed, prune, guard, |q, a| {
                         let query = &set.queries[q as usize];
+                        if let Some(t) = opts.min_hex_quality
+                            && query.matched_hex_quality(map, a.matched_raw()).is_some_and(|j| j <= t)
+                        {
+                            return;
+                        }
                         if opts.all_automorphisms || query.automorphisms.is_canonical(map, &query.word, a) {
                             let mut start = start;
                             if let Some(fit) =

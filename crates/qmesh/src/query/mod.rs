@@ -25,6 +25,7 @@ mod annotation;
 mod automorphism;
 mod error;
 mod fit;
+mod guard;
 mod matcher;
 mod metric;
 mod query_map;

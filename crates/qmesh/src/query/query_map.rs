@@ -89,6 +89,14 @@ impl Query {
         self.automorphisms = Automorphisms::of(&self.map, &self.labelling, &self.word);
     }
 
+    /// Sets the hexahedral corners (labels at the VTK nodes) that the hex-quality
+    /// metric and the corner guards read; automorphisms that do not move them as a cube
+    /// symmetry then give matches of their own (they read another hexahedron).
+    pub fn set_corners(&mut self, corners: [u32; 8]) {
+        self.automorphisms.restrict_to_corner_symmetries(&self.map, &self.labelling, &corners);
+        self.corners = Some(corners);
+    }
+
     /// Whether the query's vertices span 3D, so that matches can be compared with it by
     /// an affine fit (`orient_by_geometry`, `max_residual`).
     pub fn has_affine_fit(&self) -> bool {

@@ -4,6 +4,7 @@
 //! its parent, so every word is checked exactly as Algorithm 1 alone would.
 
 use super::annotate::Annotator;
+use super::guard::CornerGuards;
 use super::word::QueryWord;
 use crate::cmap::{BitSet, CMap3};
 
@@ -123,19 +124,40 @@ impl PrefixTree {
         self.max_darts
     }
 
+    /// The symbols read on the way into `node`.
+    pub(crate) fn run_of(&self, node: usize) -> &[u32] {
+        let n = self.nodes[node];
+        &self.symbols[n.run as usize..(n.run + n.len) as usize]
+    }
+
+    /// The queries whose words end at `node`.
+    pub(crate) fn terminals_of(&self, node: usize) -> &[u32] {
+        let n = self.nodes[node];
+        &self.terminals[n.t_first as usize..(n.t_first + n.t_count) as usize]
+    }
+
+    pub(crate) fn children_of(&self, node: usize) -> &[u32] {
+        let n = self.nodes[node];
+        &self.children[n.first as usize..(n.first + n.count) as usize]
+    }
+
     /// Walks the tree and the map together from input dart `start` (raw), calling
     /// `found(query, annotator)` at every terminal reached: the annotator then holds
     /// that query's match. `consumed` darts count as annotated ∅. With `prune` (one
     /// table per query), a branch owned by one query stops as soon as an automorphic
     /// image of its match starts at a smaller dart (only canonical matches are then
-    /// reported).
-    pub fn walk(
+    /// reported). With `guard` (its corner checks and a threshold), queries whose
+    /// matched corners have a Jacobian at or below the threshold are dropped as soon as
+    /// those corners are matched.
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn walk(
         &self,
         map: &CMap3,
         annot: &mut Annotator,
         start: u32,
         consumed: Option<&BitSet>,
         prune: Option<&[Vec<bool>]>,
+        guard: Option<(&CornerGuards, f64)>,
         mut found: impl FnMut(u32, &Annotator),
     ) {
         if self.nodes[0].count == 0 || consumed.is_some_and(|c| c.get(start as usize)) {
@@ -146,6 +168,13 @@ impl PrefixTree {
         let mut stack = std::mem::take(&mut annot.stack);
         stack.clear();
         stack.push((0, 0, annot.save()));
+        // Queries still alive at each stack level (guards only), `w` words per level.
+        let w = guard.map_or(0, |g| g.0.words);
+        let mut alive = std::mem::take(&mut annot.alive);
+        if w > 0 {
+            alive.clear();
+            alive.resize(w, u64::MAX);
+        }
         while let Some(top) = stack.last_mut() {
             let node = self.nodes[top.0 as usize];
             if top.1 == node.count {
@@ -166,13 +195,25 @@ impl PrefixTree {
             if !annot.run(map, consumed, c.depth as usize, syms, table) {
                 continue;
             }
+            let level = stack.len();
+            if let Some((g, threshold)) = guard {
+                alive.resize((level + 1) * w, 0);
+                alive.copy_within((level - 1) * w..level * w, level * w);
+                let (matched, mine) = (&annot.matched, &mut alive[level * w..(level + 1) * w]);
+                if !g.apply(child as usize, map, matched, threshold, mine) {
+                    continue;
+                }
+            }
             for &q in &self.terminals[c.t_first as usize..(c.t_first + c.t_count) as usize] {
-                found(q, annot);
+                if w == 0 || alive[level * w + q as usize / 64] >> (q % 64) & 1 == 1 {
+                    found(q, annot);
+                }
             }
             if c.count > 0 {
                 stack.push((child, 0, annot.save()));
             }
         }
         annot.stack = stack;
+        annot.alive = alive;
     }
 }

@@ -276,21 +276,24 @@ fn map_diagonals(diagonals: u8, p: &[u8; 8]) -> u8 {
 /// once per diagonal choice up to the cube's symmetries; the other choices get the
 /// images of its subdivisions.
 pub(crate) fn all_subdivisions() -> Vec<(u8, Subdivision)> {
+    use rayon::prelude::*;
     let symmetries = cube::symmetries();
     let mut found: Vec<FxHashSet<Subdivision>> = vec![FxHashSet::default(); 64];
-    for diagonals in 0..64u8 {
-        if symmetries.iter().any(|p| map_diagonals(diagonals, p) < diagonals) {
-            continue;
-        }
-        let mut s = Search::new(diagonals);
-        s.run();
+    let representatives: Vec<u8> = (0..64u8).filter(|&d| symmetries.iter().all(|p| map_diagonals(d, p) >= d)).collect();
+    let searched: Vec<(u8, FxHashSet<Subdivision>)> = representatives
+        .into_par_iter()
+        .map(|d| {
+            let mut s = Search::new(d);
+            s.run();
+            (d, s.found)
+        })
+        .collect();
+    for (diagonals, sub) in searched {
         for p in &symmetries {
             let d = map_diagonals(diagonals, p);
-            for t in &s.found {
-                let mut image: Subdivision = t
-                    .iter()
-                    .map(|&m| (0..8).filter(|&c| m >> c & 1 == 1).fold(0u8, |r, c| r | 1 << p[c]))
-                    .collect();
+            for t in &sub {
+                let mut image: Subdivision =
+                    t.iter().map(|&m| (0..8).filter(|&c| m >> c & 1 == 1).fold(0u8, |r, c| r | 1 << p[c])).collect();
                 image.sort_unstable();
                 found[d as usize].insert(image);
             }
@@ -312,13 +315,19 @@ mod tests {
     #[test]
     fn five_and_six_tetrahedra_splits_are_found() {
         let all = all_subdivisions();
-        // The 5-tet split: diagonals joining the even corners {0, 3, 5, 6}.
+        let corners = |m: u8| (0..8u8).filter(move |&c| m >> c & 1 == 1);
+        let one_parity = |m: u8| {
+            let p: Vec<u32> = corners(m).map(|c| c.count_ones() % 2).collect();
+            p.iter().all(|&x| x == p[0])
+        };
+        // The 5-tet splits: a central tetrahedron on corners of one parity.
         let five: Vec<_> = all.iter().filter(|(_, t)| t.len() == 5).collect();
         assert_eq!(five.len(), 2, "one per parity class of corners");
         for (_, t) in &five {
-            let central = t.iter().filter(|&&m| (0..8).filter(|&c| m >> c & 1 == 1).all(|c| (c as u8).count_ones() % 2 == 0) || (0..8).filter(|&c| m >> c & 1 == 1).all(|c| (c as u8).count_ones() % 2 == 1)).count();
-            assert_eq!(central, 1);
+            assert_eq!(t.iter().filter(|&&m| one_parity(m)).count(), 1);
         }
         assert!(all.iter().all(|(_, t)| (5..=15).contains(&t.len())));
+        // A subdivision has T - 5 inner edges (Euler), so 15 tets use every edge of K8.
+        assert!(all.iter().any(|(_, t)| t.len() == 15));
     }
 }

@@ -79,6 +79,11 @@ pub struct OrientedClass {
 pub const HEX_FACES: [[u8; 4]; 6] =
     [[0, 4, 7, 3], [1, 2, 6, 5], [0, 1, 5, 4], [3, 7, 6, 2], [0, 3, 2, 1], [4, 5, 6, 7]];
 
+/// Positions of the 8 corners.
+type Corners = [[f64; 3]; 8];
+/// A labelled subdivision keyed for sorting into classes.
+type Keyed = (usize, Vec<u8>, Vec<u8>, u8, Vec<u8>);
+
 /// Every subdivision, its classes and their realisations.
 #[derive(Debug)]
 pub struct HexSplits {
@@ -107,7 +112,9 @@ fn image(tets: &[u8], p: &[u8; 8]) -> Vec<u8> {
 fn carry(p: &[[f64; 3]; 8], s: &[u8; 8]) -> [[f64; 3]; 8] {
     let origin = cube::corner(s[0]);
     let axes: [[f64; 3]; 3] = std::array::from_fn(|k| crate::geom::sub(cube::corner(s[1 << k]), origin));
-    let map = |x: [f64; 3]| -> [f64; 3] { std::array::from_fn(|j| origin[j] + (0..3).map(|k| x[k] * axes[k][j]).sum::<f64>()) };
+    let map = |x: [f64; 3]| -> [f64; 3] {
+        std::array::from_fn(|j| origin[j] + (0..3).map(|k| x[k] * axes[k][j]).sum::<f64>())
+    };
     let mut out = [[0.0; 3]; 8];
     for c in 0..8 {
         out[s[c] as usize] = map(p[c]);
@@ -116,11 +123,7 @@ fn carry(p: &[[f64; 3]; 8], s: &[u8; 8]) -> [[f64; 3]; 8] {
 }
 
 fn canonical(tets: &[u8], perms: &[[u8; 8]]) -> Vec<u8> {
-    perms
-        .iter()
-        .map(|p| image(tets, p))
-        .min()
-        .expect("the group is not empty")
+    perms.iter().map(|p| image(tets, p)).min().expect("the group is not empty")
 }
 
 impl HexSplits {
@@ -140,18 +143,32 @@ impl HexSplits {
         let mut oriented: Vec<OrientedClass> = Vec::new();
         let mut splits = Vec::with_capacity(all.len());
         // Per class: its representative's masks and realisation (corner-bit order).
-        let mut found: Vec<(Vec<u8>, Option<[[f64; 3]; 8]>)> = Vec::new();
+        let mut found: Vec<(Vec<u8>, Option<Corners>)> = Vec::new();
         let mut by_diagonals = vec![Vec::new(); 64];
         // Classes are numbered by (tetrahedron count, canonical form).
-        let mut keyed: Vec<(usize, Vec<u8>, Vec<u8>, u8, Vec<u8>)> = all
+        // (tets, canonical up to 48, canonical up to 24, diagonals, tets)
+        let mut keyed: Vec<Keyed> = all
             .into_iter()
             .map(|(d, t)| (t.len(), canonical(&t, &symmetries), canonical(&t, &rotations), d, t))
             .collect();
         keyed.sort();
+        // The first member of each class is its representative: realise those in parallel.
+        let realizations: FxHashMap<Vec<u8>, Option<Corners>> = {
+            use rayon::prelude::*;
+            let mut seen = rustc_hash::FxHashSet::default();
+            let reps: Vec<(&Vec<u8>, u8)> =
+                keyed.iter().filter(|k| seen.insert(k.1.clone())).map(|k| (&k.4, k.3)).collect();
+            reps.into_par_iter()
+                .map(|(t, d)| {
+                    let oriented = realize::orient(t, d).expect("enumerated subdivisions are balls");
+                    (t.clone(), realize::realize(&oriented))
+                })
+                .collect()
+        };
         for (_, c48, c24, diagonals, tets) in keyed {
             let oriented_tets = realize::orient(&tets, diagonals).expect("enumerated subdivisions are balls");
             let class = *class_of.entry(c48).or_insert_with(|| {
-                let realization = realize::realize(&oriented_tets);
+                let realization = realizations[&tets];
                 found.push((tets.clone(), realization));
                 classes.push(SplitClass {
                     tets: oriented_tets.iter().map(|&t| to_vtk(t)).collect(),

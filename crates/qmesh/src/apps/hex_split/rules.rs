@@ -71,30 +71,52 @@ pub fn split_target_mesh(tets: &[[u8; 4]], points: &[[f64; 3]; 8]) -> IndexedMes
     m
 }
 
+/// The start dart whose word is the smallest (lexicographically, conditions last): the
+/// same rule for every query, so words share long prefixes in the tree, and closing
+/// labels (smaller than new ones) come as early as possible, so a walk fails early.
+/// On Armadillo (149,675 tets) this cuts the symbols checked from 3.8 G (first dart)
+/// to 0.63 G.
+fn canonical_start(map: &crate::cmap::CMap3) -> Dart {
+    let word = |d: Dart| -> Vec<u32> {
+        let l = crate::query::Labelling::new(map, d).expect("query maps are connected");
+        crate::query::QueryWord::new(map, &l, |_| Condition::NoConnection).symbols().to_vec()
+    };
+    map.darts().min_by_key(|&d| word(d)).expect("not empty")
+}
+
 /// One rule per oriented class that has a positive realisation (2025 §7.1: 171 classes
 /// up to symmetry, each chiral one in both mirror images).
 ///
 /// # Errors
 /// Only on a defect of the generated maps (never expected; tested).
 pub fn hex_rules() -> Result<Vec<HexRule>, HexRuleError> {
+    use rayon::prelude::*;
     let splits = HexSplits::get();
-    let mut rules = Vec::new();
-    for (o, class) in splits.oriented.iter().enumerate() {
-        let Some(points) = class.realization else { continue };
+    let realised: Vec<usize> =
+        (0..splits.oriented.len()).filter(|&o| splits.oriented[o].realization.is_some()).collect();
+    realised.into_par_iter().map(|o| rule_of(splits, o)).collect()
+}
+
+/// The rule of oriented class `o` (which has a realisation).
+fn rule_of(splits: &HexSplits, o: usize) -> Result<HexRule, HexRuleError> {
+    let class = &splits.oriented[o];
+    {
+        let points = class.realization.expect("only realised classes get rules");
         let err_class = class.class;
         let opts = BuildOptions::default();
         let (qmap, _) = build_volume_map(&split_query_mesh(&class.tets, &points), &opts)
             .map_err(|source| HexRuleError::Build { class: err_class, source })?;
         let (tmap, _) = build_volume_map(&split_target_mesh(&class.tets, &points), &opts)
             .map_err(|source| HexRuleError::Build { class: err_class, source })?;
-        let mut query = Query::new(&format!("hex-split-{o}"), qmap, |_| Condition::NoConnection)
+        let start = canonical_start(&qmap);
+        let mut query = Query::from_start(&format!("hex-split-{o}"), qmap, start, |_| Condition::NoConnection)
             .map_err(|source| HexRuleError::Query { class: err_class, source })?;
         let corners: [u32; 8] = std::array::from_fn(|i| {
             query.labelling.darts.iter().position(|&d| query.map.vertex_of(d) == i as u32).expect("every node is used")
                 as u32
                 + 1
         });
-        query.corners = Some(corners);
+        query.set_corners(corners);
         let plan = Plan::new(Operation::Replace, &mut query, &tmap)
             .map_err(|source| HexRuleError::Plan { class: err_class, source })?;
         let diagonals = HEX_FACES.map(|q| {
@@ -112,9 +134,8 @@ pub fn hex_rules() -> Result<Vec<HexRule>, HexRuleError> {
         });
         let on_diagonal = |l: u32| diagonals.iter().flatten().any(|&x| x == l);
         let keep = query.word.free_labels().map(|k| k as u32).find(|&k| !on_diagonal(k)).expect("hexahedron edges");
-        rules.push(HexRule { oriented: o, query, plan, corners, diagonals, keep });
+        Ok(HexRule { oriented: o, query, plan, corners, diagonals, keep })
     }
-    Ok(rules)
 }
 
 #[cfg(test)]
@@ -140,7 +161,8 @@ mod tests {
                 let q = HEX_FACES[f];
                 let v = |l: u32| r.query.map.vertex_of(r.query.labelling.darts[l as usize - 1]);
                 for &l in d {
-                    let mut e = [v(l), r.query.map.vertex_of(r.query.map.next(r.query.labelling.darts[l as usize - 1]))];
+                    let mut e =
+                        [v(l), r.query.map.vertex_of(r.query.map.next(r.query.labelling.darts[l as usize - 1]))];
                     e.sort_unstable();
                     let mut a = [u32::from(q[0]), u32::from(q[2])];
                     let mut b = [u32::from(q[1]), u32::from(q[3])];
