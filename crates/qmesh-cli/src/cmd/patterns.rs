@@ -189,6 +189,9 @@ pub enum Generated {
     Tet2hex,
     Transitions,
     MarchingCubes,
+    /// The subdivisions of the hexahedron into tetrahedra (2025 §7.1): per oriented
+    /// class with a positive realisation, its query and target.
+    HexTetrahedralizations,
 }
 
 impl Generated {
@@ -198,7 +201,7 @@ impl Generated {
             Generated::HexSubdivision => Some(GeneratedKind::HexSubdivision),
             Generated::Tet2hex => Some(GeneratedKind::Tet2Hex),
             Generated::Transitions => Some(GeneratedKind::Transitions),
-            Generated::MarchingCubes => None,
+            Generated::MarchingCubes | Generated::HexTetrahedralizations => None,
         }
     }
 }
@@ -213,6 +216,9 @@ pub enum PatternFormat {
 
 /// `qmesh patterns generate`: writes `DIR/fpattern/*` and `DIR/vpattern/*`.
 fn generate(kind: Generated, dir: &std::path::Path, format: Option<PatternFormat>) -> Result<ExitCode> {
+    if let Generated::HexTetrahedralizations = kind {
+        return generate_hex_splits(dir, format.unwrap_or(PatternFormat::Vtk));
+    }
     let Some(kind) = kind.kind() else {
         return generate_marching_cubes(dir, format.unwrap_or(PatternFormat::Moka));
     };
@@ -298,4 +304,55 @@ pub fn load_sets(dirs: &[PathBuf]) -> Result<Option<PatternSet>> {
         anyhow::bail!("no usable pattern in {dirs:?}");
     }
     Ok(Some(set))
+}
+
+/// `qmesh patterns generate hex-tetrahedralizations`: `DIR/query/split-NNN-Tt.*` (the
+/// tetrahedra on a positive realisation) and `DIR/target/split-NNN-Tt.*` (one volume
+/// bounded by the same 12 triangles) per oriented class, and the counts.
+fn generate_hex_splits(dir: &std::path::Path, format: PatternFormat) -> Result<ExitCode> {
+    use qmesh::apps::{HexSplits, split_query_mesh, split_target_mesh};
+    let s = HexSplits::get();
+    let mut written = 0;
+    for (o, class) in s.oriented.iter().enumerate() {
+        let Some(p) = class.realization else { continue };
+        let stem = format!("split-{o:03}-{}t", class.tets.len());
+        for (sub, mesh) in
+            [("query", split_query_mesh(&class.tets, &p)), ("target", split_target_mesh(&class.tets, &p))]
+        {
+            let folder = dir.join(sub);
+            std::fs::create_dir_all(&folder)?;
+            match format {
+                PatternFormat::Vtk => {
+                    write_indexed(&folder.join(format!("{stem}.vtk")), &mesh, Format::Vtk, &WriteOptions::default())?
+                }
+                PatternFormat::Moka => {
+                    let (map, _) = build_map(mesh, &BuildOptions { fix_orientation: false })?;
+                    write_map(&folder.join(format!("{stem}.moka")), &map, None, &WriteOptions::default())?;
+                }
+            }
+        }
+        written += 1;
+    }
+    let hist: Vec<String> = s.histogram().iter().map(|(t, n)| format!("{t} tets: {n}")).collect();
+    let realised = s.classes.iter().filter(|c| c.realization.is_some()).count();
+    println!(
+        "{} labelled subdivisions; {} classes up to the 48 symmetries of the cube ({}); {} up to the 24 rotations",
+        s.splits.len(),
+        s.classes.len(),
+        hist.join(", "),
+        s.oriented.len()
+    );
+    println!(
+        "{realised} classes with a positive realisation found ({} without: {}); {written} query/target pairs written to {}",
+        s.classes.len() - realised,
+        s.classes
+            .iter()
+            .enumerate()
+            .filter(|c| c.1.realization.is_none())
+            .map(|c| c.0.to_string())
+            .collect::<Vec<_>>()
+            .join(", "),
+        dir.display()
+    );
+    Ok(ExitCode::SUCCESS)
 }
