@@ -14,6 +14,7 @@ pub mod io;
 pub mod modify;
 pub mod pattern;
 pub mod query;
+mod random;
 pub mod render;
 pub mod replace;
 pub mod signature;

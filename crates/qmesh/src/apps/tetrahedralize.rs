@@ -59,23 +59,6 @@ pub enum TetrahedralizeError {
     NoHexahedron,
 }
 
-/// SplitMix64 (reproducible on every platform).
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-
-    fn below(&mut self, n: usize) -> usize {
-        (self.next() % n as u64) as usize
-    }
-}
-
 /// A quadrilateral by its sorted vertex ids.
 fn quad_key(q: [u32; 4]) -> [u32; 4] {
     let mut k = q;
@@ -135,7 +118,7 @@ pub fn tetrahedralize(
     for (h, faces) in hex_faces.iter().enumerate() {
         faces.iter().for_each(|&f| hexes_of_face[f as usize].push(h as u32));
     }
-    let mut rng = Rng(opts.seed ^ 0xD1A6_0000);
+    let mut rng = crate::random::SplitMix64(opts.seed ^ 0xD1A6_0000);
     let (colour, bipartite) = two_colouring(mesh, &hexes);
     // The chosen diagonal of each quad, as the vertex it starts from (one of q[0], q[1]).
     let mut diagonal: Vec<u32> = quads

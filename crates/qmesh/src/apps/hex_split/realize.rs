@@ -80,24 +80,6 @@ fn same_orientation(a: [u8; 4], b: [u8; 4]) -> bool {
     inversions % 2 == 0
 }
 
-/// SplitMix64: reproducible pseudo-random numbers.
-pub(crate) struct SplitMix(pub u64);
-
-impl SplitMix {
-    pub(crate) fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-
-    /// Uniform in [0, 1).
-    pub(crate) fn unit(&mut self) -> f64 {
-        (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
-
 /// The smallest signed volume ×6 of the oriented tetrahedra on corners `p`.
 fn worst(p: &[[f64; 3]; 8], tets: &[[u8; 4]]) -> f64 {
     tets.iter().map(|&t| det(p, t)).fold(f64::INFINITY, f64::min)
@@ -112,7 +94,7 @@ fn worst(p: &[[f64; 3]; 8], tets: &[[u8; 4]]) -> f64 {
 pub(crate) fn realize(tets: &[[u8; 4]]) -> Option<[[f64; 3]; 8]> {
     const TARGET: f64 = 1e-3;
     const TEMPERATURE: f64 = 0.02;
-    let mut rng = SplitMix(0x5EED_0000 + tets.len() as u64);
+    let mut rng = crate::random::SplitMix64(0x5EED_0000 + tets.len() as u64);
     // Starts ever farther from the cube (past 2 or so, random points of the box): two
     // of the 15-tetrahedron classes are only found from far away.
     for restart in 0..64 {
