@@ -13,7 +13,7 @@ use rustc_hash::FxHashMap;
 
 use super::hex_split::{HexRule, HexRuleError, HexSplits, hex_rules};
 use super::recombine_swaps::improve_by_swaps;
-use crate::build::{CellKind, ExtractedKinds, IndexedMesh, extract_with, polyhedron_stream};
+use crate::build::{CellKind, ExtractedKinds, IndexedMesh, classify_volume, extract_with, polyhedron_stream};
 use crate::cmap::{BitSet, CMap3, Dart, Orbit};
 use crate::modify::execute;
 use crate::query::{MatchOptions, Metric, QuerySet, Strategy, find_matches, select};
@@ -118,7 +118,7 @@ pub fn recombine(
     let catalogue_seconds = t.elapsed().as_secs_f64();
     let book = rule_book()?;
     let mut report = RecombineReport {
-        tets_in: map.cells(Orbit::Volume).filter(|&d| map.face_degree(d) == 3 && is_tet(map, d)).count(),
+        tets_in: map.cells(Orbit::Volume).filter(|&d| classify_volume(map, d) == CellKind::Tet).count(),
         queries: book.rules.len(),
         catalogue_seconds,
         rules_seconds: t.elapsed().as_secs_f64() - catalogue_seconds,
@@ -190,10 +190,6 @@ pub fn recombine(
         report.quality_mean = Some(qualities.iter().sum::<f64>() / qualities.len() as f64);
     }
     Ok((report, out))
-}
-
-fn is_tet(map: &CMap3, d: Dart) -> bool {
-    matches!(crate::build::standard_cell(map, d), Some((crate::cmap::Standard::Tet, _)))
 }
 
 /// The cells of a recombined map: tetrahedra, hexahedra whose six faces are
