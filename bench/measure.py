@@ -1,33 +1,40 @@
 #!/usr/bin/env python3
-"""Run commands side by side; report median wall time and peak RSS (from wait4).
+"""Run commands side by side; report median wall time and peak RSS.
 
 usage: measure.py RUNS LABEL -- CMD... [--- LABEL -- CMD...]...
 The commands run round-robin (one run of each, RUNS times), so a shared machine that
 speeds up or slows down during the measurement affects them alike. Prints one JSON
 object per command with the median seconds, the max peak RSS, and the command's own
-stdout (parsed when it is JSON) from one extra run."""
+stdout (parsed when it is JSON) from one extra run.
+
+Peak RSS comes from GNU time (/usr/bin/time), which forks the command from its own
+small process: a command forked from Python directly would be charged Python's
+resident pages (~10 MB) until its exec, which swamps small runs."""
 import json
 import os
 import statistics
 import subprocess
 import sys
+import tempfile
 import time
+
+
+GNU_TIME = "/usr/bin/time"
 
 
 def run_once(cmd):
     """Wall seconds and peak RSS bytes of one run of cmd (output discarded)."""
-    t = time.perf_counter()
-    pid = os.fork()
-    if pid == 0:
-        fd = os.open(os.devnull, os.O_WRONLY)
-        os.dup2(fd, 1)
-        os.dup2(fd, 2)
-        os.execvp(cmd[0], cmd)
-    _, status, usage = os.wait4(pid, 0)
-    wall = time.perf_counter() - t
-    if os.waitstatus_to_exitcode(status) != 0:
-        sys.exit(f"command failed: {' '.join(cmd)}")
-    return wall, usage.ru_maxrss * 1024
+    if not os.access(GNU_TIME, os.X_OK):
+        sys.exit(f"{GNU_TIME} (GNU time, Debian package `time`) is needed for peak memory")
+    with tempfile.NamedTemporaryFile("r") as report:
+        t = time.perf_counter()
+        done = subprocess.run([GNU_TIME, "-f", "%M", "-o", report.name, *cmd],
+                              stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        wall = time.perf_counter() - t
+        if done.returncode != 0:
+            sys.exit(f"command failed: {' '.join(cmd)}")
+        kib = int(report.read().split()[-1])
+    return wall, kib * 1024
 
 
 def output_of(cmd):

@@ -41,6 +41,13 @@ impl Annotator {
         }
     }
 
+    /// Makes room for queries of up to `max_darts` darts (kept if already large enough).
+    pub(crate) fn reserve(&mut self, max_darts: usize) {
+        if self.table.capacity() < 2 * max_darts + 2 {
+            *self = Annotator::new(max_darts);
+        }
+    }
+
     /// Starts a new annotation at input dart `start` (label 1).
     #[inline]
     pub(crate) fn begin(&mut self, start: u32) {

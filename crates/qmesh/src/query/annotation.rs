@@ -31,6 +31,11 @@ impl Annotation {
         }
     }
 
+    /// The entries it holds at load factor ≤ 1/4.
+    pub(crate) fn capacity(&self) -> usize {
+        self.keys.len() / 4
+    }
+
     #[inline]
     fn slot(&self, d: u32) -> usize {
         (d.wrapping_mul(0x9E37_79B9) >> self.shift) as usize

@@ -30,19 +30,26 @@ pub struct Automorphisms {
 impl Automorphisms {
     /// All automorphisms of the query `map` labelled by `labelling` with word `word`.
     pub fn of(map: &CMap3, labelling: &Labelling, word: &QueryWord) -> Automorphisms {
+        thread_local! {
+            // One annotator per thread for every query compiled on it (rule books
+            // compile hundreds of queries).
+            static ANNOTATOR: std::cell::RefCell<Annotator> = std::cell::RefCell::new(Annotator::new(0));
+        }
         let strict = word.with_all_conditions(Condition::Boundary);
-        let mut a = Annotator::new(word.nb_darts());
         let start = labelling.darts[0];
         let mut others = Vec::new();
-        for &s in &labelling.darts {
-            if s == start || !a.annotate(map, &strict, s, None) {
-                continue;
+        ANNOTATOR.with_borrow_mut(|a| {
+            a.reserve(word.nb_darts());
+            for &s in &labelling.darts {
+                if s == start || !a.annotate(map, &strict, s, None) {
+                    continue;
+                }
+                let image: Vec<u32> = a.matched_raw().iter().map(|&d| labelling.label[d as usize]).collect();
+                let keeps_conditions =
+                    word.free_labels().all(|k| word.condition(k) == word.condition(image[k - 1] as usize));
+                others.push(Permutation { image, keeps_conditions, cube: true });
             }
-            let image: Vec<u32> = a.matched_raw().iter().map(|&d| labelling.label[d as usize]).collect();
-            let keeps_conditions =
-                word.free_labels().all(|k| word.condition(k) == word.condition(image[k - 1] as usize));
-            others.push(Permutation { image, keeps_conditions, cube: true });
-        }
+        });
         Automorphisms { others }
     }
 

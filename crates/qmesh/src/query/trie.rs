@@ -38,77 +38,60 @@ pub struct PrefixTree {
     max_darts: usize,
 }
 
-/// The uncompressed tree, one symbol per edge.
-#[derive(Default)]
-struct Plain {
-    children: Vec<Vec<(u32, u32)>>,
-    ends: Vec<Vec<u32>>,
-}
-
 impl PrefixTree {
-    /// The tree of `words` (word i ends at a terminal naming i).
+    /// The tree of `words` (word i ends at a terminal naming i), built from the words
+    /// sorted: the words through a node are a contiguous range of the sorted list, and
+    /// a run ends where the range's first and last words part (or one ends). Children
+    /// are in order of their smallest word index, terminals in word order.
     pub fn new<'a>(words: impl IntoIterator<Item = &'a QueryWord>) -> PrefixTree {
-        let mut plain = Plain { children: vec![Vec::new()], ends: vec![Vec::new()] };
-        let mut max_darts = 0;
-        for (q, w) in words.into_iter().enumerate() {
-            max_darts = max_darts.max(w.nb_darts());
-            let mut node = 0usize;
-            for &s in w.ops() {
-                node = match plain.children[node].iter().find(|e| e.0 == s) {
-                    Some(&(_, c)) => c as usize,
-                    None => {
-                        let c = plain.children.len();
-                        plain.children.push(Vec::new());
-                        plain.ends.push(Vec::new());
-                        plain.children[node].push((s, c as u32));
-                        c
-                    }
-                };
-            }
-            plain.ends[node].push(q as u32);
-        }
-        // The owner of each plain node: the one query ending in its subtree, or MIXED.
-        let mut owner = vec![u32::MAX - 1; plain.children.len()]; // u32::MAX - 1 = none yet
-        for p in (0..plain.children.len()).rev() {
-            // Children are created after their parent, so they are already known.
-            let mut o = u32::MAX - 1;
-            for &q in &plain.ends[p] {
-                o = if o == u32::MAX - 1 || o == q { q } else { MIXED };
-            }
-            for &(_, c) in &plain.children[p] {
-                let co = owner[c as usize];
-                o = if o == u32::MAX - 1 || o == co { co } else { MIXED };
-            }
-            owner[p] = o;
-        }
+        let words: Vec<&[u32]> = words.into_iter().map(|w| w.ops()).collect();
+        let max_darts = words.iter().map(|w| w.len() / 3).max().unwrap_or(0);
+        let mut sorted: Vec<u32> = (0..words.len() as u32).collect();
+        sorted.sort_by(|&a, &b| words[a as usize].cmp(words[b as usize]).then(a.cmp(&b)));
+        let word = |i: usize| words[sorted[i] as usize];
+        let common = |lo: usize, hi: usize, from: usize| -> usize {
+            let (a, b) = (word(lo), word(hi - 1));
+            from + a[from..].iter().zip(&b[from..]).take_while(|(x, y)| x == y).count()
+        };
         let mut tree = PrefixTree { max_darts, ..Default::default() };
         tree.nodes.push(Node::default());
-        // (compressed node, plain node it stands for, depth below it)
-        let mut todo = vec![(0usize, 0usize, 0u32)];
-        while let Some((c, p, depth)) = todo.pop() {
-            let ends = &plain.ends[p];
+        // (compressed node, its range of sorted words, depth below it)
+        let mut todo = vec![(0usize, 0usize, words.len(), 0usize)];
+        while let Some((c, lo, hi, depth)) = todo.pop() {
+            // Words ending here sort first in the range.
+            let ends = (lo..hi).take_while(|&i| word(i).len() == depth).count();
             tree.nodes[c].t_first = tree.terminals.len() as u32;
-            tree.nodes[c].t_count = ends.len() as u32;
-            tree.terminals.extend_from_slice(ends);
-            let kids = &plain.children[p];
+            tree.nodes[c].t_count = ends as u32;
+            tree.terminals.extend((lo..lo + ends).map(|i| sorted[i]));
+            // Groups of words by their symbol at `depth`, by smallest word index.
+            let mut groups: Vec<(u32, usize, usize)> = Vec::new();
+            let mut i = lo + ends;
+            while i < hi {
+                let sym = word(i)[depth];
+                let j = (i..hi).find(|&j| word(j)[depth] != sym).unwrap_or(hi);
+                groups.push(((i..j).map(|k| sorted[k]).min().expect("not empty"), i, j));
+                i = j;
+            }
+            groups.sort_unstable();
             tree.nodes[c].first = tree.children.len() as u32;
-            tree.nodes[c].count = kids.len() as u32;
+            tree.nodes[c].count = groups.len() as u32;
             let first = tree.children.len();
-            tree.children.resize(first + kids.len(), 0);
-            for (j, &(sym, mut q)) in kids.iter().enumerate() {
+            tree.children.resize(first + groups.len(), 0);
+            for (k, &(smallest, a, b)) in groups.iter().enumerate() {
+                let end = common(a, b, depth);
                 let run = tree.symbols.len() as u32;
-                tree.symbols.push(sym);
-                // Follow the chain while it has one child and ends no word.
-                while plain.children[q as usize].len() == 1 && plain.ends[q as usize].is_empty() {
-                    let (s, next) = plain.children[q as usize][0];
-                    tree.symbols.push(s);
-                    q = next;
-                }
-                let len = tree.symbols.len() as u32 - run;
+                tree.symbols.extend_from_slice(&word(a)[depth..end]);
+                let owner = if b - a == 1 { smallest } else { MIXED };
                 let id = tree.nodes.len();
-                tree.nodes.push(Node { run, len, depth, owner: owner[q as usize], ..Default::default() });
-                tree.children[first + j] = id as u32;
-                todo.push((id, q as usize, depth + len));
+                tree.nodes.push(Node {
+                    run,
+                    len: (end - depth) as u32,
+                    depth: depth as u32,
+                    owner,
+                    ..Default::default()
+                });
+                tree.children[first + k] = id as u32;
+                todo.push((id, a, b, end));
             }
         }
         tree

@@ -7,27 +7,34 @@
 //!
 //! Corners are numbered in VTK hexahedron order everywhere in this module's API.
 //!
+//! The enumeration and the realisation search take about a second; every run of
+//! `recombine` or `tetrahedralize` needs their result, so it is stored in `table.rs`,
+//! generated from [`HexSplits::enumerate`] and checked against it by a test
+//! (`stored::tests`), which also regenerates it (`QMESH_BLESS=1`).
+//!
 //! ```
 //! let s = qmesh::apps::HexSplits::get();
 //! assert_eq!(s.classes.len(), 174);
 //! assert_eq!(s.classes.iter().filter(|c| c.realization.is_some()).count(), 171);
+//! assert_eq!(s.splits().len(), 6966);
 //! ```
 
+mod classify;
 mod enumerate;
 mod realize;
 mod rules;
+mod stored;
+#[rustfmt::skip]
+mod table;
 
 use std::collections::BTreeMap;
 use std::sync::OnceLock;
 
-use rustc_hash::FxHashMap;
-
-use crate::apps::cube;
 use crate::build::HEX_CORNER_BITS;
 pub use rules::{HexRule, HexRuleError, hex_rules, split_query_mesh, split_target_mesh};
 
 /// One subdivision of the hexahedron with labelled corners.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct HexSplit {
     /// Tetrahedra as VTK hexahedron node numbers, each in positive order.
     pub tets: Vec<[u8; 4]>,
@@ -51,7 +58,7 @@ impl HexSplit {
 }
 
 /// A class up to the 48 symmetries of the cube.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct SplitClass {
     /// A representative (VTK node numbers, positive order).
     pub tets: Vec<[u8; 4]>,
@@ -64,13 +71,16 @@ pub struct SplitClass {
 }
 
 /// A class up to the 24 rotations.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct OrientedClass {
     /// A representative (VTK node numbers, positive order).
     pub tets: Vec<[u8; 4]>,
     pub class: usize,
     /// Node positions (VTK order) where every tetrahedron is positive, if found.
     pub realization: Option<[[f64; 3]; 8]>,
+    /// With a realisation: the dart of the query map built from [`split_query_mesh`]
+    /// whose word is the smallest, the start of the class's rule (see `rules`).
+    pub query_start: Option<u32>,
 }
 
 /// The faces of the hexahedron as VTK node quads, outward (right-hand normals), in the
@@ -79,26 +89,13 @@ pub struct OrientedClass {
 pub const HEX_FACES: [[u8; 4]; 6] =
     [[0, 4, 7, 3], [1, 2, 6, 5], [0, 1, 5, 4], [3, 7, 6, 2], [0, 3, 2, 1], [4, 5, 6, 7]];
 
-/// Positions of the 8 corners.
-type Corners = [[f64; 3]; 8];
-/// A labelled subdivision keyed for sorting into classes.
-type Keyed = (usize, Vec<u8>, Vec<u8>, u8, Vec<u8>);
-
-/// Every subdivision, its classes and their realisations.
-#[derive(Debug)]
-pub struct HexSplits {
-    pub splits: Vec<HexSplit>,
-    pub classes: Vec<SplitClass>,
-    pub oriented: Vec<OrientedClass>,
-    /// Indices into `splits` by diagonal choice.
-    by_diagonals: Vec<Vec<u32>>,
-}
-
+/// A corner-bit tetrahedron in VTK node numbers (the renumbering is an involution).
 fn to_vtk(t: [u8; 4]) -> [u8; 4] {
     t.map(|c| HEX_CORNER_BITS[c as usize] as u8)
 }
 
-/// The subdivision `tets` relabelled by the corner permutation `p`, sorted.
+/// The subdivision `tets` (corner masks) relabelled by the corner permutation `p`,
+/// sorted.
 fn image(tets: &[u8], p: &[u8; 8]) -> Vec<u8> {
     let mut v: Vec<u8> =
         tets.iter().map(|&m| (0..8).filter(|&c| m >> c & 1 == 1).fold(0u8, |r, c| r | 1 << p[c])).collect();
@@ -106,111 +103,62 @@ fn image(tets: &[u8], p: &[u8; 8]) -> Vec<u8> {
     v
 }
 
-/// A realisation of `tets` moved by the cube isometry of corner permutation `s`: a
-/// realisation of `image(tets, s)` (corner-bit order). An improper isometry reverses
-/// both the geometry and the combinatorial orientation, so tetrahedra stay positive.
-fn carry(p: &[[f64; 3]; 8], s: &[u8; 8]) -> [[f64; 3]; 8] {
-    let origin = cube::corner(s[0]);
-    let axes: [[f64; 3]; 3] = std::array::from_fn(|k| crate::geom::sub(cube::corner(s[1 << k]), origin));
-    let map = |x: [f64; 3]| -> [f64; 3] {
-        std::array::from_fn(|j| origin[j] + (0..3).map(|k| x[k] * axes[k][j]).sum::<f64>())
-    };
-    let mut out = [[0.0; 3]; 8];
-    for c in 0..8 {
-        out[s[c] as usize] = map(p[c]);
-    }
-    out
+/// Every subdivision, its classes and their realisations.
+#[derive(Debug)]
+pub struct HexSplits {
+    pub classes: Vec<SplitClass>,
+    pub oriented: Vec<OrientedClass>,
+    /// The labelled subdivisions, derived from `oriented` when first asked for.
+    labelled: OnceLock<Labelled>,
 }
 
-fn canonical(tets: &[u8], perms: &[[u8; 8]]) -> Vec<u8> {
-    perms.iter().map(|p| image(tets, p)).min().expect("the group is not empty")
+/// The labelled subdivisions, ordered by oriented class, then diagonal choice, then
+/// corner masks.
+#[derive(Debug, PartialEq)]
+struct Labelled {
+    splits: Vec<HexSplit>,
+    /// Indices into `splits` by diagonal choice.
+    by_diagonals: Vec<Vec<u32>>,
+}
+
+impl Labelled {
+    fn new(splits: Vec<HexSplit>) -> Labelled {
+        let mut by_diagonals = vec![Vec::new(); 64];
+        for (i, s) in splits.iter().enumerate() {
+            by_diagonals[s.diagonals as usize].push(i as u32);
+        }
+        Labelled { splits, by_diagonals }
+    }
 }
 
 impl HexSplits {
-    /// The catalogue, computed once per process (a few tens of milliseconds).
+    /// The catalogue, read once per process from the stored table (the enumeration's
+    /// result, checked by a test).
     pub fn get() -> &'static HexSplits {
         static CATALOGUE: OnceLock<HexSplits> = OnceLock::new();
-        CATALOGUE.get_or_init(HexSplits::compute)
+        CATALOGUE.get_or_init(stored::from_table)
     }
 
-    fn compute() -> HexSplits {
-        let all = enumerate::all_subdivisions();
-        let symmetries = cube::symmetries();
-        let rotations = cube::rotations();
-        let mut class_of: FxHashMap<Vec<u8>, usize> = FxHashMap::default();
-        let mut oriented_of: FxHashMap<Vec<u8>, usize> = FxHashMap::default();
-        let mut classes: Vec<SplitClass> = Vec::new();
-        let mut oriented: Vec<OrientedClass> = Vec::new();
-        let mut splits = Vec::with_capacity(all.len());
-        // Per class: its representative's masks and realisation (corner-bit order).
-        let mut found: Vec<(Vec<u8>, Option<Corners>)> = Vec::new();
-        let mut by_diagonals = vec![Vec::new(); 64];
-        // Classes are numbered by (tetrahedron count, canonical form).
-        // (tets, canonical up to 48, canonical up to 24, diagonals, tets)
-        let mut keyed: Vec<Keyed> = all
-            .into_iter()
-            .map(|(d, t)| (t.len(), canonical(&t, &symmetries), canonical(&t, &rotations), d, t))
-            .collect();
-        keyed.sort();
-        // The first member of each class is its representative: realise those in parallel.
-        let realizations: FxHashMap<Vec<u8>, Option<Corners>> = {
-            use rayon::prelude::*;
-            let mut seen = rustc_hash::FxHashSet::default();
-            let reps: Vec<(&Vec<u8>, u8)> =
-                keyed.iter().filter(|k| seen.insert(k.1.clone())).map(|k| (&k.4, k.3)).collect();
-            reps.into_par_iter()
-                .map(|(t, d)| {
-                    let oriented = realize::orient(t, d).expect("enumerated subdivisions are balls");
-                    (t.clone(), realize::realize(&oriented))
-                })
-                .collect()
-        };
-        for (_, c48, c24, diagonals, tets) in keyed {
-            let oriented_tets = realize::orient(&tets, diagonals).expect("enumerated subdivisions are balls");
-            let class = *class_of.entry(c48).or_insert_with(|| {
-                let realization = realizations[&tets];
-                found.push((tets.clone(), realization));
-                classes.push(SplitClass {
-                    tets: oriented_tets.iter().map(|&t| to_vtk(t)).collect(),
-                    members: 0,
-                    realization: realization.map(|p| std::array::from_fn(|i| p[HEX_CORNER_BITS[i] as usize])),
-                    oriented: Vec::new(),
-                });
-                classes.len() - 1
-            });
-            classes[class].members += 1;
-            let o = *oriented_of.entry(c24).or_insert_with(|| {
-                classes[class].oriented.push(oriented.len());
-                // The class's realisation carried by the symmetry onto this member.
-                let (rep, p) = &found[class];
-                let realization = p.map(|p| {
-                    let s = symmetries
-                        .iter()
-                        .find(|s| image(rep, s) == tets)
-                        .expect("members of a class are images of its representative");
-                    carry(&p, s)
-                });
-                oriented.push(OrientedClass {
-                    tets: oriented_tets.iter().map(|&t| to_vtk(t)).collect(),
-                    class,
-                    realization: realization.map(|p| std::array::from_fn(|i| p[HEX_CORNER_BITS[i] as usize])),
-                });
-                oriented.len() - 1
-            });
-            by_diagonals[diagonals as usize].push(splits.len() as u32);
-            splits.push(HexSplit {
-                tets: oriented_tets.iter().map(|&t| to_vtk(t)).collect(),
-                diagonals,
-                class,
-                oriented: o,
-            });
-        }
-        HexSplits { splits, classes, oriented, by_diagonals }
+    /// The catalogue computed from scratch: every subdivision enumerated, classified and
+    /// realised (about a second on 2 cores). [`HexSplits::get`] returns the same,
+    /// stored.
+    pub fn enumerate() -> HexSplits {
+        classify::from_enumeration()
+    }
+
+    /// Every labelled subdivision (6,966).
+    pub fn splits(&self) -> &[HexSplit] {
+        &self.labelled().splits
+    }
+
+    fn labelled(&self) -> &Labelled {
+        self.labelled.get_or_init(|| stored::labelled(&self.oriented))
     }
 
     /// The subdivisions whose face diagonals are `diagonals` (bits as in [`HexSplit`]).
     pub fn with_diagonals(&self, diagonals: u8) -> impl Iterator<Item = &HexSplit> + '_ {
-        self.by_diagonals[diagonals as usize & 63].iter().map(|&i| &self.splits[i as usize])
+        let l = self.labelled();
+        l.by_diagonals[diagonals as usize & 63].iter().map(|&i| &l.splits[i as usize])
     }
 
     /// Number of classes per tetrahedron count (up to the 48 symmetries).
@@ -235,7 +183,7 @@ mod tests {
         let h = s.histogram();
         assert_eq!((h.keys().next(), h.keys().last()), (Some(&5), Some(&15)));
         assert_eq!(h[&5], 1);
-        assert_eq!(s.classes.iter().map(|c| c.members).sum::<usize>(), s.splits.len());
+        assert_eq!(s.classes.iter().map(|c| c.members).sum::<usize>(), s.splits().len());
         // Up to rotation a class is one or two (a chiral pair) oriented classes.
         assert_eq!(s.classes.iter().map(|c| c.oriented.len()).sum::<usize>(), s.oriented.len());
         assert!(s.classes.iter().all(|c| matches!(c.oriented.len(), 1 | 2)));
@@ -244,7 +192,7 @@ mod tests {
         for d in 0..64u8 {
             assert!(s.with_diagonals(d).all(|x| x.diagonals == d));
         }
-        assert_eq!((0..64u8).map(|d| s.with_diagonals(d).count()).sum::<usize>(), s.splits.len());
+        assert_eq!((0..64u8).map(|d| s.with_diagonals(d).count()).sum::<usize>(), s.splits().len());
     }
 
     #[test]
@@ -262,7 +210,7 @@ mod tests {
 
     #[test]
     fn hex_faces_are_the_cube_faces_in_vtk_numbers() {
-        for (f, quad) in cube::faces().iter().enumerate() {
+        for (f, quad) in crate::apps::cube::faces().iter().enumerate() {
             assert_eq!(HEX_FACES[f], quad.map(|c| HEX_CORNER_BITS[c as usize] as u8), "face {f}");
         }
     }

@@ -85,6 +85,9 @@ fn worst(p: &[[f64; 3]; 8], tets: &[[u8; 4]]) -> f64 {
     tets.iter().map(|&t| det(p, t)).fold(f64::INFINITY, f64::min)
 }
 
+/// The volume ×6 every tetrahedron of a realisation exceeds.
+const TARGET: f64 = 1e-3;
+
 /// Corner positions (index = corner bits) making every oriented tetrahedron positive
 /// (volume ×6 above 10⁻³ within the box [−1, 2]³), or None when the search fails
 /// (which does not prove that none exists).
@@ -92,7 +95,6 @@ fn worst(p: &[[f64; 3]; 8], tets: &[[u8; 4]]) -> f64 {
 /// Gradient ascent on a soft minimum of the volumes, from the unit cube and then from
 /// reproducibly perturbed cubes (deterministic: the same answer on every run).
 pub(crate) fn realize(tets: &[[u8; 4]]) -> Option<[[f64; 3]; 8]> {
-    const TARGET: f64 = 1e-3;
     const TEMPERATURE: f64 = 0.02;
     let mut rng = crate::random::SplitMix64(0x5EED_0000 + tets.len() as u64);
     // Starts ever farther from the cube (past 2 or so, random points of the box): two
@@ -135,4 +137,17 @@ pub(crate) fn realize(tets: &[[u8; 4]]) -> Option<[[f64; 3]; 8]> {
         }
     }
     None
+}
+
+/// The realisation `p` of `tets` rounded to the fewest decimals (up to 9) that keep
+/// every tetrahedron clearly positive (volume ×6 above half the search's target), so
+/// that the stored catalogue reads as short numbers; `p` itself if none does.
+pub(crate) fn tidy(p: [[f64; 3]; 8], tets: &[[u8; 4]]) -> [[f64; 3]; 8] {
+    (2..=9)
+        .map(|decimals| {
+            let scale = 10f64.powi(decimals);
+            p.map(|q| q.map(|x| (x * scale).round() / scale))
+        })
+        .find(|r| worst(r, tets) > 0.5 * TARGET)
+        .unwrap_or(p)
 }
