@@ -34,7 +34,8 @@ enum Command {
     Query(cmd::query::Args),
     /// Query-modify (2025): extend / delete / replace the matches of each rule of a TOML rule file.
     Modify(cmd::modify::Args),
-    /// Pattern sets: audit (kinds, signatures, automorphisms, duplicates).
+    /// Pattern sets: audit (kinds, signatures, automorphisms, duplicates), generate
+    /// (the sets qmesh builds), boundaries (each v-pattern's boundary as a cell).
     Patterns(cmd::patterns::Args),
     /// Octree hexahedral subdivision of a surface (2022 Algorithm 5), with 2:1 balance.
     Subdivide(cmd::subdivide::Args),
@@ -50,11 +51,20 @@ enum Command {
     MarchingCubes(cmd::marching_cubes::Args),
     /// A PNG picture: cells shrunk apart, optionally clipped, coloured by type/level/quality/label/component.
     Render(cmd::render::Args),
-    /// A short tour on built-in inputs: generate, inspect, split edges, write files.
+    /// A short tour on built-in inputs, written into a folder: a torus surface, its
+    /// octree hexahedra, their conformal transitions, marching cubes, tet → hex, each
+    /// with a mesh file and a PNG picture, and what each step did.
     Demo(cmd::demo::Args),
 }
 
 fn main() -> ExitCode {
+    // Like other Unix tools, end quietly when the reader of stdout goes away
+    // (`qmesh info x.vtk | head`) instead of panicking on the broken pipe.
+    #[cfg(unix)]
+    // SAFETY: restoring the default action of a signal before any thread exists.
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
+    }
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Info(a) => cmd::info::run(a),

@@ -43,6 +43,7 @@ fn generated_set_covers_every_configuration() {
     assert_eq!(uncovered(&set), Vec::<String>::new());
 }
 
+#[cfg_attr(not(qmesh_data), ignore = "needs the shared data folder ($QMESH_DATA)")]
 #[test]
 fn papers_325_patterns_cover_every_configuration() {
     let Some(dir) = common::data_dir() else { return };
@@ -56,6 +57,7 @@ fn papers_325_patterns_cover_every_configuration() {
     assert_eq!(uncovered(&set), Vec::<String>::new());
 }
 
+#[cfg_attr(not(qmesh_data), ignore = "needs the shared data folder ($QMESH_DATA)")]
 #[test]
 fn octree_of_the_bunny_becomes_conformal() {
     let Some(dir) = common::data_dir() else { return };

@@ -68,6 +68,7 @@ fn sphere_and_torus_have_their_topology() {
     assert_eq!(topology(&t), (0, 0));
 }
 
+#[cfg_attr(not(qmesh_data), ignore = "needs the shared data folder ($QMESH_DATA)")]
 #[test]
 fn shared_fields_give_closed_surfaces() {
     let Some(dir) = common::data_dir() else { return };
@@ -83,6 +84,7 @@ fn shared_fields_give_closed_surfaces() {
     }
 }
 
+#[cfg_attr(not(qmesh_data), ignore = "needs the shared data folder ($QMESH_DATA)")]
 #[test]
 fn bunny_surface_through_its_octree() {
     let Some(dir) = common::data_dir() else { return };

@@ -77,6 +77,7 @@ fn balance_is_needed_and_applied() {
     assert_eq!(r.per_level.iter().sum::<usize>(), r.volumes);
 }
 
+#[cfg_attr(not(qmesh_data), ignore = "needs the shared data folder ($QMESH_DATA)")]
 #[test]
 fn bunny_at_level_four_both_ways() {
     let Some(dir) = common::data_dir() else { return };

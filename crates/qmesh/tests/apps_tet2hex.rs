@@ -6,6 +6,7 @@ use qmesh::apps::tet_to_hex;
 use qmesh::build::{BuildOptions, extract, quality_by_kind};
 use qmesh::io::load_map;
 
+#[cfg_attr(not(qmesh_data), ignore = "needs the shared data folder ($QMESH_DATA)")]
 #[test]
 fn every_tetrahedron_becomes_four_positive_hexahedra() {
     let Some(dir) = common::data_dir() else { return };

@@ -69,22 +69,26 @@ fn roundtrip_all(sub: &str, volume_formats: bool) {
     eprintln!("{sub}: {checked} of {} files round-tripped", files.len());
 }
 
+#[cfg_attr(not(qmesh_data), ignore = "needs the shared data folder ($QMESH_DATA)")]
 #[test]
 fn hex_files_roundtrip() {
     roundtrip_all("hex", true);
 }
 
+#[cfg_attr(not(qmesh_data), ignore = "needs the shared data folder ($QMESH_DATA)")]
 #[test]
 fn tet_files_roundtrip() {
     roundtrip_all("tet", true);
 }
 
+#[cfg_attr(not(qmesh_data), ignore = "needs the shared data folder ($QMESH_DATA)")]
 #[test]
 fn surface_files_roundtrip() {
     roundtrip_all("surface", false);
 }
 
 /// 2025 Table 1 column #d: 24 darts per hexahedron.
+#[cfg_attr(not(qmesh_data), ignore = "needs the shared data folder ($QMESH_DATA)")]
 #[test]
 fn paper_hex_meshes_have_expected_counts() {
     let Some(d) = common::data_dir() else { return };
@@ -110,6 +114,7 @@ fn paper_hex_meshes_have_expected_counts() {
 }
 
 /// HexaLab files declaring VTK type 10 with 8 indices are read as hexahedra.
+#[cfg_attr(not(qmesh_data), ignore = "needs the shared data folder ($QMESH_DATA)")]
 #[test]
 fn type10_with_eight_indices_reads_as_hex() {
     let Some(d) = common::data_dir() else { return };
@@ -119,6 +124,7 @@ fn type10_with_eight_indices_reads_as_hex() {
 }
 
 /// The same mesh in four formats gives the same map.
+#[cfg_attr(not(qmesh_data), ignore = "needs the shared data folder ($QMESH_DATA)")]
 #[test]
 fn formats_agree_on_gmsh_sphere() {
     let Some(d) = common::data_dir() else { return };

@@ -15,6 +15,7 @@ fn signatures(set: &PatternSet, kind: PatternKind) -> Vec<String> {
     v
 }
 
+#[cfg_attr(not(qmesh_data), ignore = "needs the shared data folder ($QMESH_DATA)")]
 #[test]
 fn generated_sets_match_the_papers_pattern_files() {
     let Some(d) = common::data_dir() else { return };

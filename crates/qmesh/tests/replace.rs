@@ -31,6 +31,7 @@ fn run(m: &mut CMap3, set: &PatternSet, k: usize) -> qmesh::replace::ReplaceRepo
     query_replace(m, set, &ReplaceOptions { split_edges: Some(k), ..ReplaceOptions::default() }).unwrap()
 }
 
+#[cfg_attr(not(qmesh_data), ignore = "needs the shared data folder ($QMESH_DATA)")]
 #[test]
 fn hexa_8_subdivision_on_every_hex_mesh() {
     let Some(set) = patterns("hexa-8-subdivision") else { return };
@@ -53,6 +54,7 @@ fn hexa_8_subdivision_on_every_hex_mesh() {
     }
 }
 
+#[cfg_attr(not(qmesh_data), ignore = "needs the shared data folder ($QMESH_DATA)")]
 #[test]
 fn tetra_to_hexa_on_every_tet_mesh() {
     let Some(set) = patterns("tetra-to-hexa") else { return };
@@ -70,6 +72,7 @@ fn tetra_to_hexa_on_every_tet_mesh() {
     }
 }
 
+#[cfg_attr(not(qmesh_data), ignore = "needs the shared data folder ($QMESH_DATA)")]
 #[test]
 fn hexa_to_truncated_cube_runs_and_stays_valid() {
     let Some(set) = patterns("hexa-to-truncated-cube") else { return };
@@ -87,6 +90,7 @@ fn hexa_to_truncated_cube_runs_and_stays_valid() {
 }
 
 /// Theorem 2: the map stays valid after every single face and volume replacement.
+#[cfg_attr(not(qmesh_data), ignore = "needs the shared data folder ($QMESH_DATA)")]
 #[test]
 fn theorem_2_validity_after_every_replacement() {
     for (set_name, mesh, k) in
@@ -116,6 +120,7 @@ fn theorem_2_validity_after_every_replacement() {
     }
 }
 
+#[cfg_attr(not(qmesh_data), ignore = "needs the shared data folder ($QMESH_DATA)")]
 #[test]
 fn signatures_and_direct_matching_give_the_same_mesh() {
     for (set_name, mesh) in [("hexa-8-subdivision", "hex/fandisk.vtk"), ("tetra-to-hexa", "tet/octopus-low.mesh")] {
@@ -137,6 +142,7 @@ fn signatures_and_direct_matching_give_the_same_mesh() {
 
 /// Each of the 325 transition configurations (a pattern's boundary as one cell, flagged
 /// by the same geometric rule) is matched by exactly its own pattern.
+#[cfg_attr(not(qmesh_data), ignore = "needs the shared data folder ($QMESH_DATA)")]
 #[test]
 fn each_transition_configuration_matches_its_own_pattern() {
     let Some(set) = patterns("hexa-325-patterns") else { return };
@@ -152,6 +158,7 @@ fn each_transition_configuration_matches_its_own_pattern() {
 /// Coverage (2022 §6.4): the hex subdivision set on a tet mesh leaves every face and
 /// volume uncovered, in exactly two configurations — the split triangle (the signature of
 /// the tetra-to-hexa f-pattern) and the split tetrahedron.
+#[cfg_attr(not(qmesh_data), ignore = "needs the shared data folder ($QMESH_DATA)")]
 #[test]
 fn coverage_lists_the_configurations_no_pattern_matches() {
     let (Some(hex8), Some(tet)) = (patterns("hexa-8-subdivision"), patterns("tetra-to-hexa")) else { return };

@@ -80,6 +80,7 @@ proptest! {
     }
 }
 
+#[cfg_attr(not(qmesh_data), ignore = "needs the shared data folder ($QMESH_DATA)")]
 #[test]
 fn the_325_transition_patterns_have_325_distinct_signatures() {
     let Some(d) = common::data_dir() else { return };
@@ -98,6 +99,7 @@ fn the_325_transition_patterns_have_325_distinct_signatures() {
     }
 }
 
+#[cfg_attr(not(qmesh_data), ignore = "needs the shared data folder ($QMESH_DATA)")]
 #[test]
 fn papers_pattern_sets_load_with_the_expected_kinds() {
     let Some(d) = common::data_dir() else { return };
@@ -119,6 +121,7 @@ fn papers_pattern_sets_load_with_the_expected_kinds() {
 
 /// Signatures of all pattern boundaries collide exactly when the direct test says the
 /// boundaries are isomorphic.
+#[cfg_attr(not(qmesh_data), ignore = "needs the shared data folder ($QMESH_DATA)")]
 #[test]
 fn pattern_signatures_collide_only_for_isomorphic_boundaries() {
     let Some(d) = common::data_dir() else { return };
@@ -147,6 +150,7 @@ fn pattern_signatures_collide_only_for_isomorphic_boundaries() {
 
 /// On random cells of a real mesh with random edge splits (flags on original darts),
 /// equal signatures ⇔ the direct isomorphism test matches.
+#[cfg_attr(not(qmesh_data), ignore = "needs the shared data folder ($QMESH_DATA)")]
 #[test]
 fn signature_equality_matches_direct_isomorphism_on_random_cells() {
     let Some(d) = common::data_dir() else { return };

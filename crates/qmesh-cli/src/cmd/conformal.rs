@@ -17,12 +17,12 @@ use super::parse_format;
 pub struct Args {
     /// A 2:1-balanced octree hexahedral mesh (e.g. from `qmesh subdivide`).
     pub input: PathBuf,
-    /// Output mesh (hexahedra, prisms, pyramids, tetrahedra).
-    #[arg(short, long)]
-    pub output: PathBuf,
+    #[command(flatten)]
+    pub output: super::OutputArgs,
     /// Transition pattern folders (default: qmesh's generated `transitions` set). The
     /// papers' set: hexa-325-patterns and square-5-patterns.
-    #[arg(long, num_args = 1..)]
+    /// Repeat the option or separate folders with commas.
+    #[arg(long, value_delimiter = ',')]
     pub patterns: Vec<PathBuf>,
     /// Test every pattern directly instead of looking signatures up.
     #[arg(long)]
@@ -32,22 +32,17 @@ pub struct Args {
     pub format: Option<String>,
     #[command(flatten)]
     pub report: super::ReportArgs,
-    /// Allow the output to be the input file.
-    #[arg(long)]
-    pub force: bool,
 }
 
 pub fn run(a: Args) -> Result<ExitCode> {
-    if !a.force && super::convert::same_file(&a.input, &a.output) {
-        bail!("{} is the input file; refusing to overwrite it (use --force)", a.output.display());
-    }
-    let out_format = resolve_format(&a.output, None)?;
+    a.output.check_against(&a.input)?;
+    let out_format = resolve_format(&a.output.output, None)?;
     let set = match super::patterns::load_sets(&a.patterns)? {
         Some(set) => set,
         None => generated_pattern_set(GeneratedKind::Transitions, FlagRule::Corners)?,
     };
     if set.count(PatternKind::Volume) == 0 {
-        bail!("no v-pattern in {:?}", a.patterns);
+        bail!("no v-pattern in {}", super::patterns::path_list(&a.patterns));
     }
     let mesh = match read(&a.input, parse_format(&a.format)?)? {
         Loaded::Indexed(m) if m.is_volume() => m,
@@ -61,13 +56,13 @@ pub fn run(a: Args) -> Result<ExitCode> {
     let (mut cells, _) = extract(&map);
     cells.set_cell_array("pattern_id", CellValues::Int(volume_values(&map, &r.replace.created_volumes, -1)));
     let quality = qmesh::build::quality_by_kind(&cells);
-    write_indexed(&a.output, &cells, out_format, &WriteOptions::default())?;
+    write_indexed(&a.output.output, &cells, out_format, &WriteOptions::default())?;
     let k = &r.kinds;
     let rep = &r.replace;
     if a.report.json {
         let j = json!({
             "input": a.input.display().to_string(),
-            "output": a.output.display().to_string(),
+            "output": a.output.output.display().to_string(),
             "f_patterns": set.count(PatternKind::Face),
             "v_patterns": set.count(PatternKind::Volume),
             "hanging_vertices": r.hanging.hanging_vertices,
@@ -86,7 +81,7 @@ pub fn run(a: Args) -> Result<ExitCode> {
             "seconds": r.seconds,
         });
         println!("{}", serde_json::to_string_pretty(&j)?);
-    } else {
+    } else if !a.report.quiet {
         println!(
             "{} f- and {} v-patterns; {} hanging vertices in {} cells; {} faces and {} volumes replaced ({} / {} unmatched)",
             set.count(PatternKind::Face),
@@ -108,7 +103,7 @@ pub fn run(a: Args) -> Result<ExitCode> {
             rep.query_seconds,
             rep.replace_seconds,
             r.seconds,
-            a.output.display()
+            a.output.output.display()
         );
     }
     Ok(if valid && nonconformal == 0 && rep.unmatched_volumes == 0 { ExitCode::SUCCESS } else { ExitCode::from(1) })

@@ -3,9 +3,9 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use anyhow::{Result, bail};
+use anyhow::Result;
 use qmesh::build::BuildOptions;
-use qmesh::io::{WriteOptions, load_map, write_map_with_arrays};
+use qmesh::io::{Format, WriteOptions, indexed_for, load_map, resolve_format, write_indexed, write_map};
 
 use super::{InputArgs, parse_format};
 
@@ -24,12 +24,13 @@ pub struct Args {
     /// Allow the output to be the input file.
     #[arg(long)]
     pub force: bool,
+    /// Leave out the points that no cell uses (kept by default).
+    #[arg(long)]
+    pub drop_unused: bool,
 }
 
 pub fn run(a: Args) -> Result<ExitCode> {
-    if !a.force && same_file(&a.input.input, &a.output) {
-        bail!("{} is the input file; refusing to overwrite it (use --force)", a.output.display());
-    }
+    super::refuse_to_overwrite(&a.input.input, &a.output, a.force)?;
     let opts = BuildOptions { fix_orientation: a.input.fix_orientation };
     let loaded = load_map(&a.input.input, parse_format(&a.input.format)?, &opts)?;
     for w in &loaded.warnings {
@@ -41,28 +42,32 @@ pub fn run(a: Args) -> Result<ExitCode> {
             loaded.report.inverted_cells
         );
     }
-    write_map_with_arrays(
-        &a.output,
-        &loaded.map,
-        &loaded.cell_arrays,
-        parse_format(&a.to)?,
-        &WriteOptions { binary: a.binary },
-    )?;
-    let c = loaded.map.count_cells();
-    println!(
-        "wrote {} ({} vertices, {} volumes, {} faces)",
-        a.output.display(),
-        c.vertices,
-        if loaded.map.dimension() == 3 { c.volumes } else { 0 },
-        c.faces
-    );
-    Ok(ExitCode::SUCCESS)
-}
-
-/// Whether two paths name the same existing file.
-pub fn same_file(a: &std::path::Path, b: &std::path::Path) -> bool {
-    match (std::fs::canonicalize(a), std::fs::canonicalize(b)) {
-        (Ok(x), Ok(y)) => x == y,
-        _ => false,
+    let format = resolve_format(&a.output, parse_format(&a.to)?)?;
+    let opts = WriteOptions { binary: a.binary };
+    if format == Format::Moka {
+        write_map(&a.output, &loaded.map, Some(format), &opts)?;
+        let c = loaded.map.count_cells();
+        println!("wrote {} (the map: {} darts, {} volumes)", a.output.display(), loaded.map.nb_darts(), c.volumes);
+        return Ok(ExitCode::SUCCESS);
     }
+    let unused = loaded.report.unreferenced_points;
+    let mesh = indexed_for(&loaded.map, &loaded.cell_arrays, format, !a.drop_unused);
+    write_indexed(&a.output, &mesh, format, &opts)?;
+    // What the file holds, as written (a surface format gets the boundary surface).
+    let what = if format.is_surface() && mesh.nb_polygons() > 0 && loaded.map.dimension() == 3 {
+        format!("{} polygons: the boundary surface of {} cells", mesh.nb_polygons(), loaded.map.count_cells().volumes)
+    } else if mesh.is_volume() {
+        format!("{} cells", mesh.nb_cells())
+    } else {
+        format!("{} polygons", mesh.nb_polygons())
+    };
+    println!("wrote {} ({} points, {what})", a.output.display(), mesh.points.len());
+    if unused > 0 && !(format.is_surface() && loaded.map.dimension() == 3) {
+        if a.drop_unused {
+            println!("  {unused} points that no cell uses were left out (--drop-unused)");
+        } else {
+            println!("  {unused} of the points are used by no cell; kept (--drop-unused leaves them out)");
+        }
+    }
+    Ok(ExitCode::SUCCESS)
 }

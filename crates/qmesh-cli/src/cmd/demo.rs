@@ -70,12 +70,11 @@ pub fn run(a: Args) -> Result<ExitCode> {
     let mc = mc_pattern_set();
     let (surface, r, _) = marching_cubes_surface(&bvh, 5, 0.01, &mc).map_err(anyhow::Error::msg)?;
     let tri = triangulate(&surface);
-    let chi = build_surface_map(&tri).map(|(m, _)| m.count_cells().euler_characteristic(2)).ok();
-    let what = format!(
-        "marching cubes of the octree: {} triangles, χ {chi:?}, {} cubes",
-        tri.nb_polygons(),
-        r.volumes_replaced
-    );
+    let chi = build_surface_map(&tri)
+        .map(|(m, _)| m.count_cells().euler_characteristic(2).to_string())
+        .unwrap_or_else(|e| format!("unknown ({e})"));
+    let what =
+        format!("marching cubes of the octree: {} triangles, χ {chi}, {} cubes", tri.nb_polygons(), r.volumes_replaced);
     save(dir, "torus_marching_cubes.off", &tri, &what, by_type)?;
     let n = 40usize;
     let field: Vec<f32> = (0..n * n * n)

@@ -3,7 +3,7 @@
 use std::process::ExitCode;
 
 use anyhow::Result;
-use qmesh::build::{BuildOptions, count_kinds_of, non_conformal_faces_of};
+use qmesh::build::{BuildOptions, count_kinds_of, extract, non_conformal_faces_of, tangled_cells};
 use qmesh::cmap::CMap3;
 use qmesh::io::load_map;
 use serde_json::json;
@@ -31,6 +31,7 @@ pub fn run(a: Args) -> Result<ExitCode> {
     let t = std::time::Instant::now();
     let non_conformal = if surface { 0 } else { non_conformal_faces_of(map, &census.boundary_reps) };
     let conformity_seconds = t.elapsed().as_secs_f64();
+    let tangled = if surface { 0 } else { tangled_cells(&extract(map).0) };
     let mut j = json!({
         "file": a.input.input.display().to_string(),
         "dimension": map.dimension(),
@@ -48,6 +49,7 @@ pub fn run(a: Args) -> Result<ExitCode> {
         "inverted_cells": loaded.report.inverted_cells,
         "flipped_cells": loaded.report.flipped_cells,
         "degenerate_cells": loaded.report.degenerate_cells,
+        "tangled_cells": tangled,
         "split_nonmanifold_vertices": loaded.report.split_vertices,
         "unreferenced_points": loaded.report.unreferenced_points,
         "valid": violations.is_empty(),
@@ -90,10 +92,14 @@ pub fn run(a: Args) -> Result<ExitCode> {
             kinds.hex, kinds.tet, kinds.prism, kinds.pyramid, kinds.other
         );
         println!(
-            "  inverted cells {}{}",
+            "  inverted cells {}{}  tangled cells {tangled}  degenerate cells {}",
             loaded.report.inverted_cells,
-            if loaded.report.flipped_cells > 0 { " (flipped)" } else { "" }
+            if loaded.report.flipped_cells > 0 { " (flipped)" } else { "" },
+            loaded.report.degenerate_cells
         );
+        if tangled > 0 {
+            println!("  note: tangled = positive volume but a negative corner Jacobian (see qmesh quality)");
+        }
     }
     println!("  Euler characteristic {}  components {}", c.euler_characteristic(map.dimension()), c.components);
     println!(

@@ -9,7 +9,7 @@ use qmesh::apps::{marching_cubes_field, marching_cubes_surface, mc_pattern_set, 
 use qmesh::build::build_surface_map;
 use qmesh::geom::TriangleBvh;
 use qmesh::io::{WriteOptions, read_surface, resolve_format, write_indexed};
-use qmesh::pattern::{FlagRule, PatternSet, load_pattern_dir};
+use qmesh::pattern::{FlagRule, PatternSet};
 use serde_json::json;
 
 use super::parse_format;
@@ -34,12 +34,12 @@ pub struct Args {
     /// Isovalue: inside where value ≤ iso.
     #[arg(long, default_value_t = 0.0)]
     pub iso: f64,
-    /// Output surface (off, obj, vtk, vtu).
-    #[arg(short, long)]
-    pub output: PathBuf,
+    #[command(flatten)]
+    pub output: super::OutputArgs,
     /// Pattern folders (.moka with mark 0 on inside-corner darts, as `qmesh patterns
     /// generate marching-cubes` writes them); default: the built-in set.
-    #[arg(long, num_args = 1..)]
+    /// Repeat the option or separate folders with commas.
+    #[arg(long, value_delimiter = ',')]
     pub patterns: Vec<PathBuf>,
     /// Split the polygons into triangles.
     #[arg(long)]
@@ -52,14 +52,17 @@ pub struct Args {
 }
 
 pub fn run(a: Args) -> Result<ExitCode> {
-    let out_format = resolve_format(&a.output, None)?;
+    for input in a.surface.iter().chain(&a.field) {
+        a.output.check_against(input)?;
+    }
+    let out_format = resolve_format(&a.output.output, None)?;
     let set = if a.patterns.is_empty() {
         mc_pattern_set()
     } else {
         // Flags are not geometric here (inside corners): they come from the files' marks.
         let mut set = PatternSet::default();
         for dir in &a.patterns {
-            load_pattern_dir(dir, FlagRule::File).patterns.into_iter().for_each(|p| {
+            super::patterns::pattern_dir(dir, FlagRule::File)?.patterns.into_iter().for_each(|p| {
                 set.insert(p);
             });
         }
@@ -101,12 +104,12 @@ pub fn run(a: Args) -> Result<ExitCode> {
         Err(_) => (None, None),
     };
     if out.nb_polygons() > 0 {
-        write_indexed(&a.output, &out, out_format, &WriteOptions::default())?;
+        write_indexed(&a.output.output, &out, out_format, &WriteOptions::default())?;
     }
     if a.report.json {
         let j = json!({
             "input": source.display().to_string(),
-            "output": a.output.display().to_string(),
+            "output": a.output.output.display().to_string(),
             "hexahedra": hexes,
             "f_patterns": r.f_patterns,
             "v_patterns": r.v_patterns,
@@ -123,7 +126,7 @@ pub fn run(a: Args) -> Result<ExitCode> {
             "seconds": r.seconds,
         });
         println!("{}", serde_json::to_string_pretty(&j)?);
-    } else {
+    } else if !a.report.quiet {
         println!(
             "{} hexahedra, {} f- and {} v-patterns: {} edges split, {} faces and {} cubes replaced ({} / {} unmatched)",
             hexes,
@@ -144,7 +147,7 @@ pub fn run(a: Args) -> Result<ExitCode> {
             r.seconds
         );
         if out.nb_polygons() > 0 {
-            println!("wrote {}", a.output.display());
+            println!("wrote {}", a.output.output.display());
         } else {
             println!("empty surface: nothing written");
         }

@@ -32,7 +32,9 @@ pub struct InputArgs {
     /// Input format, overriding the file extension.
     #[arg(long)]
     pub format: Option<String>,
-    /// Flip cells with negative signed volume instead of only counting them.
+    /// Flip cells with negative signed volume (reverse their node order) instead of
+    /// only counting them. Tangled cells (some corners negative, volume positive) cannot
+    /// be fixed this way: `qmesh quality` lists them.
     #[arg(long)]
     pub fix_orientation: bool,
 }
@@ -49,12 +51,40 @@ pub struct OutputArgs {
 }
 
 impl OutputArgs {
-    /// Refuses to overwrite `input` without `--force`.
+    /// Refuses to overwrite `input` without `--force` ([`refuse_to_overwrite`]).
     pub fn check_against(&self, input: &std::path::Path) -> Result<()> {
-        if !self.force && convert::same_file(input, &self.output) {
-            anyhow::bail!("{} is the input file; refusing to overwrite it (use --force)", self.output.display());
-        }
-        Ok(())
+        refuse_to_overwrite(input, &self.output, self.force)
+    }
+}
+
+/// Every command that writes calls this before reading: `output` must not be `input`
+/// (whatever the path says: `./`, `..`, symbolic or hard links) unless `force`.
+///
+/// # Errors
+/// When `output` is `input` and `force` is false.
+pub fn refuse_to_overwrite(input: &std::path::Path, output: &std::path::Path, force: bool) -> Result<()> {
+    if !force && same_file(input, output) {
+        anyhow::bail!("{} is the input file; refusing to overwrite it (use --force)", output.display());
+    }
+    Ok(())
+}
+
+/// Whether two paths name the same existing file (same device and inode).
+#[cfg(unix)]
+pub fn same_file(a: &std::path::Path, b: &std::path::Path) -> bool {
+    use std::os::unix::fs::MetadataExt;
+    match (std::fs::metadata(a), std::fs::metadata(b)) {
+        (Ok(x), Ok(y)) => x.dev() == y.dev() && x.ino() == y.ino(),
+        _ => false,
+    }
+}
+
+/// Whether two paths name the same existing file (same canonical path).
+#[cfg(not(unix))]
+pub fn same_file(a: &std::path::Path, b: &std::path::Path) -> bool {
+    match (std::fs::canonicalize(a), std::fs::canonicalize(b)) {
+        (Ok(x), Ok(y)) => x == y,
+        _ => false,
     }
 }
 
@@ -64,7 +94,8 @@ pub struct ReportArgs {
     /// Print a JSON report.
     #[arg(long)]
     pub json: bool,
-    /// No progress display on stderr.
+    /// No progress display and no summary (warnings and errors are still printed, on
+    /// stderr; the exit status tells the outcome).
     #[arg(short, long)]
     pub quiet: bool,
 }

@@ -4,7 +4,7 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use anyhow::{Result, bail};
+use anyhow::Result;
 use qmesh::build::BuildOptions;
 use qmesh::io::{WriteOptions, load_map, write_map};
 use qmesh::modify::{load_rules, run_rules};
@@ -33,9 +33,7 @@ pub struct Args {
 }
 
 pub fn run(a: Args) -> Result<ExitCode> {
-    if !a.force && super::convert::same_file(&a.input.input, &a.output) {
-        bail!("{} is the input file; refusing to overwrite it (use --force)", a.output.display());
-    }
+    super::refuse_to_overwrite(&a.input.input, &a.output, a.force)?;
     set_threads(a.threads)?;
     let rules = load_rules(&a.rules)?;
     let opts = BuildOptions { fix_orientation: a.input.fix_orientation };
@@ -59,7 +57,7 @@ pub fn run(a: Args) -> Result<ExitCode> {
             "valid": valid,
         });
         println!("{}", serde_json::to_string_pretty(&j)?);
-    } else {
+    } else if !a.report.quiet {
         for r in &reports {
             println!(
                 "rule {} ({}): {} matches, {} selected, {} modified; volumes {} -> {}, darts {} -> {}; query {:.4} s, modify {:.4} s; valid: {}",

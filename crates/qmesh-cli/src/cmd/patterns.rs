@@ -42,7 +42,7 @@ pub enum Action {
     /// Write a pattern set qmesh generates (fpattern/ and vpattern/ folders) for
     /// inspection, editing, and use with `--patterns`.
     Generate {
-        /// Which set: hex-subdivision or tet2hex.
+        /// Which set.
         kind: Generated,
         /// Output folder.
         #[arg(short, long)]
@@ -71,9 +71,13 @@ pub enum Action {
 /// patterns), `file` (pattern flags from the file's marks: `.moka` mark group 0), `none`.
 #[derive(clap::ValueEnum, Clone, Copy, Debug)]
 pub enum Flags {
+    /// Darts at an original corner of a cell (the papers' rule).
     Corners,
+    /// Input cells flagged by the patterns' geometric corner rule (configuration meshes).
     Geometric,
+    /// Pattern flags from the files' marks (`.moka` mark group 0).
     File,
+    /// No flags: matching is purely topological.
     None,
 }
 
@@ -95,7 +99,7 @@ pub fn run(a: Args) -> Result<ExitCode> {
         Action::Generate { kind, output, format } => return generate(kind, &output, format),
     };
     let t = std::time::Instant::now();
-    let set = load_pattern_dir(&dir, flags.into());
+    let set = pattern_dir(&dir, flags.into())?;
     let report = audit(&set);
     let coverage = match &against {
         Some(mesh) => {
@@ -166,7 +170,7 @@ pub fn run(a: Args) -> Result<ExitCode> {
 
 /// `qmesh patterns boundaries`: each v-pattern's boundary as a VTK polyhedron.
 fn boundaries(dir: &std::path::Path, output: &std::path::Path, copies: usize) -> Result<ExitCode> {
-    let set = load_pattern_dir(dir, FlagRule::None);
+    let set = pattern_dir(dir, FlagRule::None)?;
     let mesh = boundaries_mesh(&set, copies);
     write_indexed(output, &mesh, Format::Vtk, &WriteOptions::default())?;
     let n = mesh.nb_cells();
@@ -185,9 +189,13 @@ pub fn uncovered_json(u: &[Uncovered]) -> serde_json::Value {
 
 #[derive(clap::ValueEnum, Clone, Copy, Debug)]
 pub enum Generated {
+    /// Octree refinement: every hexahedron into 8 (2022 §7.1).
     HexSubdivision,
+    /// Every tetrahedron into 4 hexahedra (2022 §7.4).
     Tet2hex,
+    /// Conformal 2:1 transitions: 5 f-patterns, 325 v-patterns (2022 §7.3).
     Transitions,
+    /// Marching cubes: 4 f-patterns, 21 v-patterns, flags as Moka marks (2022 §7.2).
     MarchingCubes,
     /// The subdivisions of the hexahedron into tetrahedra (2025 §7.1): per oriented
     /// class with a positive realisation, its query and target.
@@ -286,13 +294,30 @@ fn generate_marching_cubes(dir: &std::path::Path, format: PatternFormat) -> Resu
 
 /// The patterns of the given folders with corner flags, or None when there are none
 /// (the command's generated set applies). Fails when folders hold no usable pattern.
+/// The patterns of `dir` (a folder searched recursively, or one file), which must
+/// exist: a mistyped folder is an error, not an empty set.
+///
+/// # Errors
+/// When `dir` does not exist.
+pub fn pattern_dir(dir: &std::path::Path, rule: FlagRule) -> Result<PatternSet> {
+    if !dir.exists() {
+        anyhow::bail!("{}: no such pattern folder or file", dir.display());
+    }
+    Ok(load_pattern_dir(dir, rule))
+}
+
+/// Paths as a person reads them in a message.
+pub fn path_list(paths: &[PathBuf]) -> String {
+    paths.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", ")
+}
+
 pub fn load_sets(dirs: &[PathBuf]) -> Result<Option<PatternSet>> {
     if dirs.is_empty() {
         return Ok(None);
     }
     let mut set = PatternSet::default();
     for dir in dirs {
-        let s = load_pattern_dir(dir, FlagRule::Corners);
+        let s = pattern_dir(dir, FlagRule::Corners)?;
         for sk in &s.skipped {
             eprintln!("warning: skipped pattern {}: {}", sk.file.display(), sk.reason);
         }
@@ -301,7 +326,7 @@ pub fn load_sets(dirs: &[PathBuf]) -> Result<Option<PatternSet>> {
         });
     }
     if set.patterns.is_empty() {
-        anyhow::bail!("no usable pattern in {dirs:?}");
+        anyhow::bail!("no usable pattern in {}", path_list(dirs));
     }
     Ok(Some(set))
 }

@@ -48,11 +48,8 @@ pub struct Args {
 }
 
 pub fn run(a: Args) -> Result<ExitCode> {
-    if let Some(o) = &a.output
-        && !a.force
-        && super::convert::same_file(&a.input.input, o)
-    {
-        bail!("{} is the input file; refusing to overwrite it (use --force)", o.display());
+    if let Some(o) = &a.output {
+        super::refuse_to_overwrite(&a.input.input, o, a.force)?;
     }
     set_threads(a.query.threads)?;
     let rules = rules_of(&a.rules, &a.query)?;
@@ -126,6 +123,9 @@ pub fn run(a: Args) -> Result<ExitCode> {
             "output": a.output.as_ref().map(|o| o.display().to_string()),
         });
         println!("{}", serde_json::to_string_pretty(&j)?);
+        return Ok(ExitCode::SUCCESS);
+    }
+    if a.report.quiet {
         return Ok(ExitCode::SUCCESS);
     }
     println!(

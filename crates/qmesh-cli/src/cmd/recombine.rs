@@ -79,7 +79,7 @@ pub fn run(a: Args) -> Result<ExitCode> {
             "peak_rss_bytes": peak,
         });
         println!("{}", serde_json::to_string_pretty(&j)?);
-    } else {
+    } else if !a.report.quiet {
         println!(
             "{} tets: {} queries, {} matches; {} hexahedra, {} tets left ({:.2} %); {} hex faces still split against tets; valid: {valid}",
             r.tets_in,

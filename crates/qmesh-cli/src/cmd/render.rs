@@ -143,7 +143,7 @@ pub fn run(a: Args) -> Result<ExitCode> {
             "render_seconds": r.seconds, "peak_memory_bytes": crate::memory::peak_rss_bytes(),
         });
         println!("{}", serde_json::to_string_pretty(&j)?);
-    } else {
+    } else if !a.report.quiet {
         println!(
             "{} of {} cells drawn ({} triangles) in {:.3} s; wrote {}",
             r.cells_drawn,

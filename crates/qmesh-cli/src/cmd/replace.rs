@@ -7,7 +7,7 @@ use std::process::ExitCode;
 use anyhow::{Result, bail};
 use qmesh::build::{BuildOptions, CellValues, count_cell_kinds, extract, volume_values};
 use qmesh::io::{Format, WriteOptions, load_map, resolve_format, write_indexed, write_map};
-use qmesh::pattern::{PatternKind, PatternSet, load_pattern_dir};
+use qmesh::pattern::{PatternKind, PatternSet};
 use qmesh::replace::{ReplaceOptions, query_replace};
 use serde_json::json;
 
@@ -21,12 +21,13 @@ pub struct Args {
     /// Output mesh.
     pub output: PathBuf,
     /// Pattern folders (searched recursively; `fpattern/`, `vpattern/` layout honoured) or files.
-    #[arg(long, num_args = 1.., required = true)]
+    /// Repeat the option or separate folders with commas.
+    #[arg(long, value_delimiter = ',', required = true)]
     pub patterns: Vec<PathBuf>,
     /// Split every edge into K segments first (the e-pattern).
     #[arg(long)]
     pub split_edges: Option<usize>,
-    /// Flags on input and patterns: `corners` (the papers' rule) or `none`.
+    /// Flags on input and patterns (see the values below).
     #[arg(long, default_value = "corners")]
     pub flags: Flags,
     /// Test every pattern directly instead of looking signatures up (2022 §2.3).
@@ -40,19 +41,17 @@ pub struct Args {
 }
 
 pub fn run(a: Args) -> Result<ExitCode> {
-    if !a.force && super::convert::same_file(&a.input.input, &a.output) {
-        bail!("{} is the input file; refusing to overwrite it (use --force)", a.output.display());
-    }
+    super::refuse_to_overwrite(&a.input.input, &a.output, a.force)?;
     let mut set = PatternSet::default();
     for dir in &a.patterns {
-        let s = load_pattern_dir(dir, a.flags.into());
+        let s = super::patterns::pattern_dir(dir, a.flags.into())?;
         set.skipped.extend(s.skipped);
         for p in s.patterns {
             set.insert(p);
         }
     }
     if set.patterns.is_empty() && a.split_edges.is_none() {
-        bail!("no usable pattern in {:?}", a.patterns);
+        bail!("no usable pattern in {}", super::patterns::path_list(&a.patterns));
     }
     let opts = BuildOptions { fix_orientation: a.input.fix_orientation };
     let mut loaded = load_map(&a.input.input, parse_format(&a.input.format)?, &opts)?;
@@ -99,7 +98,7 @@ pub fn run(a: Args) -> Result<ExitCode> {
             "replace_seconds": r.replace_seconds,
         });
         println!("{}", serde_json::to_string_pretty(&j)?);
-    } else {
+    } else if !a.report.quiet {
         println!(
             "{} f-patterns, {} v-patterns; {} edges split, {} faces and {} volumes replaced ({} faces, {} volumes unmatched)",
             set.count(PatternKind::Face),

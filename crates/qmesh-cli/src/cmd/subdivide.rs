@@ -19,9 +19,8 @@ pub struct Args {
     /// Maximal subdivision level l_max (the root cube is level 0).
     #[arg(long, default_value_t = 5)]
     pub levels: u8,
-    /// Output hexahedral mesh with a `level` cell array.
-    #[arg(short, long)]
-    pub output: PathBuf,
+    #[command(flatten)]
+    pub output: super::OutputArgs,
     /// Refine plain boxes with hand-written code instead of query-replace.
     #[arg(long)]
     pub direct: bool,
@@ -33,7 +32,8 @@ pub struct Args {
     pub remove_outside: bool,
     /// Pattern folders replacing the generated `hex-subdivision` set (e.g. the papers'
     /// hexa-8-subdivision, or an edited `qmesh patterns generate` output).
-    #[arg(long, num_args = 1..)]
+    /// Repeat the option or separate folders with commas.
+    #[arg(long, value_delimiter = ',')]
     pub patterns: Vec<PathBuf>,
     /// Test patterns directly instead of looking signatures up.
     #[arg(long)]
@@ -52,7 +52,8 @@ pub fn run(a: Args) -> Result<ExitCode> {
     if !(0.0..=10.0).contains(&a.margin) {
         bail!("--margin {} is outside [0, 10]", a.margin);
     }
-    let out_format = resolve_format(&a.output, None)?;
+    a.output.check_against(&a.surface)?;
+    let out_format = resolve_format(&a.output.output, None)?;
     let surface = read_surface(&a.surface, parse_format(&a.format)?)?;
     let bvh = TriangleBvh::from_polygons(&surface.points, (0..surface.nb_polygons()).map(|i| surface.polygon(i)));
     if bvh.is_empty() {
@@ -70,13 +71,13 @@ pub fn run(a: Args) -> Result<ExitCode> {
     let s = subdivide(&bvh, &opts, set.as_ref(), &|l| pb.set_position(u64::from(l) - 1))?;
     pb.finish_and_clear();
     let validity = s.map.as_ref().map(|m| m.is_valid().is_empty());
-    write_indexed(&a.output, &s.mesh, out_format, &WriteOptions::default())?;
+    write_indexed(&a.output.output, &s.mesh, out_format, &WriteOptions::default())?;
     let r = &s.report;
     if a.report.json {
         let j = json!({
             "surface": a.surface.display().to_string(),
             "triangles": bvh.len(),
-            "output": a.output.display().to_string(),
+            "output": a.output.output.display().to_string(),
             "levels": a.levels,
             "method": if a.direct { "direct" } else { "query-replace" },
             "volumes": r.volumes,
@@ -90,7 +91,7 @@ pub fn run(a: Args) -> Result<ExitCode> {
             "seconds": r.seconds,
         });
         println!("{}", serde_json::to_string_pretty(&j)?);
-    } else {
+    } else if !a.report.quiet {
         println!(
             "{} triangles, l_max {}: {} hexahedra ({}), {} balance splits, {} outside removed",
             bvh.len(),
@@ -109,12 +110,12 @@ pub fn run(a: Args) -> Result<ExitCode> {
                 validity.unwrap_or(true)
             );
         }
-        println!("{:.3} s; wrote {}", r.seconds, a.output.display());
+        println!("{:.3} s; wrote {}", r.seconds, a.output.output.display());
     }
     if out_format == Format::Off || out_format == Format::Obj {
         eprintln!(
             "note: {} keeps only the boundary polygons; use .vtk/.vtu for the cells and levels",
-            a.output.display()
+            a.output.output.display()
         );
     }
     Ok(if validity == Some(false) { ExitCode::from(1) } else { ExitCode::SUCCESS })

@@ -6,7 +6,7 @@ use std::process::ExitCode;
 
 use anyhow::{Result, bail};
 use qmesh::apps::tet_to_hex;
-use qmesh::build::{BuildOptions, CellValues, extract, quality_by_kind, volume_values};
+use qmesh::build::{BuildOptions, CellValues, count_cell_kinds, extract, quality_by_kind, volume_values};
 use qmesh::io::{WriteOptions, load_map, resolve_format, write_indexed};
 use serde_json::json;
 
@@ -16,27 +16,37 @@ use super::{InputArgs, parse_format};
 pub struct Args {
     #[command(flatten)]
     pub input: InputArgs,
-    /// Output hexahedral mesh.
-    #[arg(short, long)]
-    pub output: PathBuf,
+    #[command(flatten)]
+    pub output: super::OutputArgs,
     /// Pattern folders replacing the generated `tet2hex` set.
-    #[arg(long, num_args = 1..)]
+    /// Repeat the option or separate folders with commas.
+    #[arg(long, value_delimiter = ',')]
     pub patterns: Vec<PathBuf>,
     #[command(flatten)]
     pub report: super::ReportArgs,
-    /// Allow the output to be the input file.
-    #[arg(long)]
-    pub force: bool,
 }
 
 pub fn run(a: Args) -> Result<ExitCode> {
-    if !a.force && super::convert::same_file(&a.input.input, &a.output) {
-        bail!("{} is the input file; refusing to overwrite it (use --force)", a.output.display());
-    }
-    let out_format = resolve_format(&a.output, None)?;
+    a.output.check_against(&a.input.input)?;
+    let out_format = resolve_format(&a.output.output, None)?;
     let opts = BuildOptions { fix_orientation: a.input.fix_orientation };
     let mut loaded = load_map(&a.input.input, parse_format(&a.input.format)?, &opts)?;
     let before = loaded.map.count_cells();
+    let input_kinds = count_cell_kinds(&loaded.map);
+    let others = before.volumes - input_kinds.tet;
+    if input_kinds.tet == 0 {
+        bail!(
+            "{}: no tetrahedra ({} other cells); tet2hex turns tetrahedra into hexahedra, so nothing was written",
+            a.input.input.display(),
+            before.volumes
+        );
+    }
+    if others > 0 {
+        eprintln!(
+            "warning: {others} cells are not tetrahedra; every edge is split (so that the mesh stays conformal), \
+             so they are written as polyhedra"
+        );
+    }
     let set = super::patterns::load_sets(&a.patterns)?;
     let pb = crate::progress::spinner("tet2hex", a.report.quiet || a.report.json);
     let r = tet_to_hex(&mut loaded.map, set.as_ref(), true)?;
@@ -45,11 +55,11 @@ pub fn run(a: Args) -> Result<ExitCode> {
     let (mut cells, kinds) = extract(&loaded.map);
     cells.set_cell_array("pattern_id", CellValues::Int(volume_values(&loaded.map, &r.created_volumes, -1)));
     let quality = quality_by_kind(&cells);
-    write_indexed(&a.output, &cells, out_format, &WriteOptions::default())?;
+    write_indexed(&a.output.output, &cells, out_format, &WriteOptions::default())?;
     if a.report.json {
         let j = json!({
             "input": a.input.input.display().to_string(),
-            "output": a.output.display().to_string(),
+            "output": a.output.output.display().to_string(),
             "volumes_before": before.volumes,
             "edges_split": r.edges_split,
             "faces_replaced": r.faces_replaced,
@@ -62,7 +72,7 @@ pub fn run(a: Args) -> Result<ExitCode> {
             "replace_seconds": r.replace_seconds,
         });
         println!("{}", serde_json::to_string_pretty(&j)?);
-    } else {
+    } else if !a.report.quiet {
         println!(
             "{} volumes -> {} hex ({} other cells kept); {} edges split, {} faces and {} tetrahedra replaced; valid: {valid}",
             before.volumes,
@@ -73,7 +83,12 @@ pub fn run(a: Args) -> Result<ExitCode> {
             r.volumes_replaced
         );
         print!("{}", super::quality::by_kind_text(&quality));
-        println!("query {:.3} s, replace {:.3} s; wrote {}", r.query_seconds, r.replace_seconds, a.output.display());
+        println!(
+            "query {:.3} s, replace {:.3} s; wrote {}",
+            r.query_seconds,
+            r.replace_seconds,
+            a.output.output.display()
+        );
     }
     Ok(if valid { ExitCode::SUCCESS } else { ExitCode::from(1) })
 }

@@ -53,7 +53,7 @@ pub fn run(a: Args) -> Result<ExitCode> {
             "seconds": seconds,
         });
         println!("{}", serde_json::to_string_pretty(&j)?);
-    } else {
+    } else if !a.report.quiet {
         let hist: Vec<String> = r.by_tet_count.iter().map(|(n, c)| format!("{n}:{c}")).collect();
         println!(
             "{} hexahedra -> {} tetrahedra ({} tetrahedra kept); tets per hex {}; {} classes used; {} diagonals flipped for positivity",

@@ -9,11 +9,15 @@ pub enum BuildError {
     BadCell { cell: usize, reason: String },
     #[error("polygon {polygon}: {reason}")]
     BadPolygon { polygon: usize, reason: String },
-    #[error("a face {face:?} is shared by more than two cells (cells {a}, {b} and {c})")]
+    #[error(
+        "three cells on one face: face {} is shared by cells {a}, {b} and {c} (a face bounds at most two cells)",
+        nodes(face)
+    )]
     FaceSharedByMoreThanTwo { face: Vec<u32>, a: usize, b: usize, c: usize },
     #[error(
-        "cells {a} and {b} meet on face {face:?} with inconsistent orientation (or are duplicates); \
-         try --fix-orientation"
+        "cells {a} and {b} meet on face {} with inconsistent orientation (or are duplicates); \
+         try --fix-orientation",
+        nodes(face)
     )]
     InconsistentOrientation { face: Vec<u32>, a: usize, b: usize },
     #[error(
@@ -23,6 +27,11 @@ pub enum BuildError {
     NonManifoldEdge { u: u32, v: u32, a: usize, b: usize },
     #[error("the mesh has no cells and no polygons")]
     Empty,
+}
+
+/// Node numbers joined by dashes, as a face reads in a message.
+fn nodes(face: &[u32]) -> String {
+    face.iter().map(u32::to_string).collect::<Vec<_>>().join("-")
 }
 
 /// What a [`BuildError`] is about: a cell or a polygon, by index.

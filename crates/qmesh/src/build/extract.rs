@@ -132,7 +132,21 @@ pub fn extract(map: &CMap3) -> (IndexedMesh, ExtractedKinds) {
 /// not a standard cell (default: its polyhedron stream).
 pub fn extract_with(
     map: &CMap3,
+    other: impl FnMut(&CMap3, Dart, &mut OrbitWalker) -> (CellKind, Vec<u32>),
+) -> (IndexedMesh, ExtractedKinds) {
+    extract_cells(map, other, false)
+}
+
+/// As [`extract`], keeping the points that no cell uses (a file's unreferenced points,
+/// which [`extract`] drops), in their order: `qmesh convert` loses nothing.
+pub fn extract_all_points(map: &CMap3) -> (IndexedMesh, ExtractedKinds) {
+    extract_cells(map, polyhedron_stream, true)
+}
+
+fn extract_cells(
+    map: &CMap3,
     mut other: impl FnMut(&CMap3, Dart, &mut OrbitWalker) -> (CellKind, Vec<u32>),
+    keep_unused_points: bool,
 ) -> (IndexedMesh, ExtractedKinds) {
     let mut out = IndexedMesh::new();
     let mut kinds = ExtractedKinds::default();
@@ -154,7 +168,7 @@ pub fn extract_with(
         }
     }
     let mut newid = vec![u32::MAX; map.nb_vertex_ids()];
-    let mut used = vec![false; map.nb_vertex_ids()];
+    let mut used = vec![keep_unused_points; map.nb_vertex_ids()];
     for d in map.darts() {
         used[map.vertex_of(d) as usize] = true;
     }

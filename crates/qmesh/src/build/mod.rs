@@ -5,6 +5,7 @@
 //! along opposite half-edges; [`extract`] goes back to indexed cells for writing.
 
 mod adjacency;
+mod boundary;
 mod conformity;
 mod error;
 mod extract;
@@ -17,11 +18,13 @@ mod volume;
 pub use conformity::{non_conformal_faces, non_conformal_faces_of};
 pub use error::{BuildError, Subject};
 pub use extract::{
-    ExtractedKinds, boundary_polygons, classify_volume, count_cell_kinds, count_kinds_of, extract, extract_with,
-    polyhedron_stream, recognise_volume, volume_values,
+    ExtractedKinds, boundary_polygons, classify_volume, count_cell_kinds, count_kinds_of, extract, extract_all_points,
+    extract_with, polyhedron_stream, recognise_volume, volume_values,
 };
 pub use indexed::{CellArray, CellKind, CellValues, HEX_CORNER_BITS, IndexedMesh};
-pub use quality::{QualityByKind, QualitySummary, cell_scaled_jacobian, quality_by_kind, scaled_jacobians};
+pub use quality::{
+    QualityByKind, QualitySummary, cell_scaled_jacobian, quality_by_kind, scaled_jacobians, tangled_cells,
+};
 pub use recognise::{StandardNodes, standard_cell};
 pub use surface::build_surface_map;
 pub use volume::{BuildOptions, BuildReport, build_volume_map, build_volume_map_owned};

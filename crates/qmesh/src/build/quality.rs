@@ -24,6 +24,34 @@ pub fn scaled_jacobians(mesh: &IndexedMesh) -> Vec<f64> {
     (0..mesh.nb_cells()).map(|i| cell_scaled_jacobian(mesh, i).unwrap_or(0.0)).collect()
 }
 
+/// Cells that are tangled: positive signed volume, yet a negative scaled Jacobian (some
+/// corner turned inside out). Reordering nodes (`--fix-orientation`) cannot repair them,
+/// unlike inverted cells (negative volume), which are not counted here.
+///
+/// ```
+/// use qmesh::build::{CellKind, IndexedMesh, tangled_cells};
+/// let mut m = IndexedMesh::new();
+/// m.points = vec![[0., 0., 0.], [1., 0., 0.], [1., 1., 0.], [0., 1., 0.],
+///                 [0., 0., 1.], [1., 0., 1.], [1., 1., 1.], [0., 1., 1.]];
+/// m.push_cell(CellKind::Hex, &[0, 1, 2, 3, 4, 5, 6, 7], None);
+/// assert_eq!(tangled_cells(&m), 0);
+/// m.points[6] = [0.2, 0.2, 0.2]; // the top corner pushed through the bottom one
+/// assert_eq!(tangled_cells(&m), 1);
+/// ```
+pub fn tangled_cells(mesh: &IndexedMesh) -> usize {
+    use rayon::prelude::*;
+    (0..mesh.nb_cells())
+        .into_par_iter()
+        .with_min_len(1 << 10)
+        .filter(|&i| {
+            let (kind, nodes) = mesh.cell(i);
+            let Some(std) = kind.standard() else { return false };
+            cell_scaled_jacobian(mesh, i).is_some_and(|j| j < 0.0)
+                && crate::geom::signed_volume_of_table(std.faces(), nodes, &mesh.points) > 0.0
+        })
+        .count()
+}
+
 /// Summary of one measure over the cells of one kind.
 #[derive(Clone, Debug, PartialEq)]
 pub struct QualitySummary {

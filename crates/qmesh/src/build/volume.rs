@@ -309,6 +309,21 @@ fn sew_shared_faces(
                 match cells.match_in(map, kinds, c2, d) {
                     FaceMatch::None => {}
                     FaceMatch::Same => {
+                        // A third cell on the face is the real defect (orientation
+                        // cannot fix it): name the three.
+                        let mut cells3 = adj.common3(a, b, third).filter(|&x| {
+                            x != c && x != c2 && !matches!(cells.match_in(map, kinds, x, d), FaceMatch::None)
+                        });
+                        if let Some(c3) = cells3.next() {
+                            let mut three = [c as usize, c2 as usize, c3 as usize];
+                            three.sort_unstable();
+                            return Err(BuildError::FaceSharedByMoreThanTwo {
+                                face: cycle(map, d),
+                                a: three[0],
+                                b: three[1],
+                                c: three[2],
+                            });
+                        }
                         return Err(BuildError::InconsistentOrientation {
                             face: cycle(map, d),
                             a: c2.min(c) as usize,

@@ -35,6 +35,16 @@ fn remove_stale_temporaries(dest: &Path) {
 /// Runs `body` on a buffered writer to a temporary file, then renames it onto `dest`.
 /// On any error the temporary file is removed and `dest` is left untouched.
 pub fn write_atomically(dest: &Path, body: impl FnOnce(&mut dyn Write) -> IoResult<()>) -> IoResult<()> {
+    let folder = dest.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    if !folder.is_dir() {
+        return Err(IoError::unsupported(
+            dest,
+            format!("cannot write here: the folder {} does not exist", folder.display()),
+        ));
+    }
+    if dest.is_dir() {
+        return Err(IoError::unsupported(dest, "this is a folder: give a file name to write"));
+    }
     remove_stale_temporaries(dest);
     let tmp = temp_path(dest);
     let result = (|| {

@@ -191,20 +191,52 @@ fn elements_v2(lx: &mut Lexer<'_>, tags: &NodeTags, els: &mut Elements) -> IoRes
         }
         let (k, ..) =
             element(t).ok_or_else(|| lx.err(format!("element type {t} is not supported (linear types 1-7, 15)")))?;
-        let nodes = node_list(lx, tags, k)?;
+        let nodes = node_list(lx, tags, t, k)?;
         let label = etags.get(1).or(etags.first()).copied().unwrap_or(0) as i32;
         els.push(t, nodes, label, lx.line());
     }
     lx.expect_word("$EndElements")
 }
 
-fn node_list(lx: &mut Lexer<'_>, tags: &NodeTags, k: usize) -> IoResult<Vec<u32>> {
+/// The `k` node tags of an element of type `t`, all on the element's line (an element
+/// line with too few nodes is reported as such, not read on into the next line).
+fn node_list(lx: &mut Lexer<'_>, tags: &NodeTags, t: i64, k: usize) -> IoResult<Vec<u32>> {
+    let line = lx.line();
+    let path = lx.path();
     let mut out = Vec::with_capacity(k);
-    for _ in 0..k {
-        let t = lx.int("a node tag")?;
-        out.push(tags.get(lx, t)?);
+    for found in 0..k {
+        let short = || IoError::Parse {
+            path: path.into(),
+            at: super::error::Location::Line(line as usize),
+            msg: format!("an element of type {t} ({}) needs {k} nodes, this one has {found}", type_name(t)),
+        };
+        match lx.peek() {
+            None => return Err(short()),
+            Some(_) => {
+                let tag = lx.int("a node tag")?;
+                if lx.line() != line {
+                    return Err(short());
+                }
+                out.push(tags.get(lx, tag)?);
+            }
+        }
     }
     Ok(out)
+}
+
+/// A person's name for a gmsh element type.
+fn type_name(t: i64) -> &'static str {
+    match t {
+        15 => "point",
+        1 => "line",
+        2 => "triangle",
+        3 => "quadrangle",
+        4 => "tetrahedron",
+        5 => "hexahedron",
+        6 => "prism",
+        7 => "pyramid",
+        _ => "unsupported",
+    }
 }
 
 fn elements_v4(lx: &mut Lexer<'_>, tags: &NodeTags, els: &mut Elements) -> IoResult<()> {
@@ -221,7 +253,7 @@ fn elements_v4(lx: &mut Lexer<'_>, tags: &NodeTags, els: &mut Elements) -> IoRes
             element(t).ok_or_else(|| lx.err(format!("element type {t} is not supported (linear types 1-7, 15)")))?;
         for _ in 0..n {
             let _id: i64 = lx.parse("an element tag")?;
-            let nodes = node_list(lx, tags, k)?;
+            let nodes = node_list(lx, tags, t, k)?;
             els.push(t, nodes, entity as i32, lx.line());
         }
     }

@@ -90,9 +90,15 @@ impl Format {
         }
     }
 
-    /// Whether qmesh can write this format.
+    /// Whether qmesh can write this format (all of them).
     pub fn writable(self) -> bool {
-        !matches!(self, Format::Stl | Format::Ply)
+        true
+    }
+
+    /// Whether the format holds surfaces only: a volume mesh written to it is written
+    /// as its boundary surface.
+    pub fn is_surface(self) -> bool {
+        matches!(self, Format::Off | Format::Obj | Format::Stl | Format::Ply)
     }
 }
 
@@ -159,7 +165,13 @@ pub fn read_moka_with_flags(path: &Path) -> IoResult<(CMap3, Vec<crate::cmap::Da
 }
 
 /// Reads a file.
+///
+/// # Errors
+/// A folder or a missing file, an unknown format, or what the format's reader finds.
 pub fn read(path: &Path, forced: Option<Format>) -> IoResult<Loaded> {
+    if path.is_dir() {
+        return Err(IoError::unsupported(path, "this is a folder, not a mesh file"));
+    }
     let format = resolve_format(path, forced)?;
     let data = std::fs::read(path).map_err(|e| IoError::io(path, e))?;
     parse(path, &data, format)
@@ -222,12 +234,25 @@ fn locate_build_error(path: &Path, cause: BuildError, (cells, polys): &(Vec<u32>
 /// Options of writers.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct WriteOptions {
-    /// Binary legacy VTK instead of ASCII.
+    /// Binary instead of ASCII (legacy VTK, STL, PLY).
     pub binary: bool,
 }
 
-/// Writes indexed cells (atomically).
+/// Writes indexed cells (atomically). A surface format (OFF, OBJ, STL, PLY) gets the
+/// boundary surface of volume cells ([`IndexedMesh::boundary_surface`]), never an
+/// empty file.
+///
+/// # Errors
+/// An I/O error, `.moka` (a map format: use [`write_map`]), or what the format cannot
+/// hold (a polygon of more than 255 vertices in PLY).
 pub fn write_indexed(path: &Path, mesh: &IndexedMesh, format: Format, opts: &WriteOptions) -> IoResult<()> {
+    let surface;
+    let mesh = if format.is_surface() && mesh.is_volume() {
+        surface = mesh.boundary_surface();
+        &surface
+    } else {
+        mesh
+    };
     write_atomically(path, |w| match format {
         Format::Vtk => vtk_legacy::write(path, mesh, opts.binary, w),
         Format::Vtu => vtu::write(path, mesh, w),
@@ -235,9 +260,9 @@ pub fn write_indexed(path: &Path, mesh: &IndexedMesh, format: Format, opts: &Wri
         Format::Msh => gmsh::write(path, mesh, w),
         Format::Off => off::write(path, mesh, w),
         Format::Obj => obj::write(path, mesh, w),
-        Format::Moka | Format::Stl | Format::Ply => {
-            Err(IoError::unsupported(path, format!("qmesh cannot write .{} files from indexed cells", format.name())))
-        }
+        Format::Stl => stl::write(path, mesh, opts.binary, w),
+        Format::Ply => ply::write(path, mesh, opts.binary, w),
+        Format::Moka => Err(IoError::unsupported(path, "a .moka file holds a map: write the map, not indexed cells")),
     })
 }
 
@@ -249,6 +274,9 @@ pub fn write_map(path: &Path, map: &CMap3, forced: Option<Format>, opts: &WriteO
 
 /// As [`write_map`], with per-volume arrays (in the map's volume order) attached to the
 /// cells of volume formats; arrays of another length are left out.
+///
+/// # Errors
+/// An unknown format, or an I/O error.
 pub fn write_map_with_arrays(
     path: &Path,
     map: &CMap3,
@@ -259,17 +287,27 @@ pub fn write_map_with_arrays(
     let format = resolve_format(path, forced)?;
     match format {
         Format::Moka => write_atomically(path, |w| moka::write(path, map, None, w)),
-        Format::Off | Format::Obj => write_indexed(path, &boundary_polygons(map), format, opts),
-        Format::Stl | Format::Ply => {
-            Err(IoError::unsupported(path, format!("qmesh reads .{} but does not write it", format.name())))
-        }
-        _ => {
-            let mut cells = extract(map).0;
-            let n = if cells.is_volume() { cells.nb_cells() } else { usize::MAX };
-            for a in arrays.iter().filter(|a| a.values.len() == n) {
-                cells.set_cell_array(&a.name, a.values.clone());
-            }
-            write_indexed(path, &cells, format, opts)
-        }
+        _ => write_indexed(path, &indexed_for(map, arrays, format, false), format, opts),
     }
+}
+
+/// What a file of `format` (not `.moka`) holds of `map`: the boundary surface of a
+/// volume map for surface formats, else its cells (or its faces, for a surface map)
+/// with the per-volume `arrays` of the right length; points no cell uses are kept with
+/// `keep_unused_points`, else dropped.
+pub fn indexed_for(
+    map: &CMap3,
+    arrays: &[crate::build::CellArray],
+    format: Format,
+    keep_unused_points: bool,
+) -> IndexedMesh {
+    if format.is_surface() && map.dimension() == 3 {
+        return boundary_polygons(map);
+    }
+    let mut cells = if keep_unused_points { crate::build::extract_all_points(map).0 } else { extract(map).0 };
+    let n = if cells.is_volume() { cells.nb_cells() } else { usize::MAX };
+    for a in arrays.iter().filter(|a| a.values.len() == n) {
+        cells.set_cell_array(&a.name, a.values.clone());
+    }
+    cells
 }

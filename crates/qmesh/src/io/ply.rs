@@ -189,3 +189,47 @@ pub fn read(path: &Path, data: &[u8]) -> IoResult<IndexedMesh> {
     }
     Ok(mesh)
 }
+
+/// Writes the mesh's points and polygons as PLY, ASCII or binary little-endian
+/// (double coordinates, `uchar` counts and `int` indices; polygons of more than 255
+/// vertices do not fit and are refused).
+///
+/// # Errors
+/// An I/O error of `w`, or a polygon of more than 255 vertices.
+pub fn write(path: &Path, mesh: &IndexedMesh, binary: bool, w: &mut dyn std::io::Write) -> IoResult<()> {
+    let io = |e| IoError::io(path, e);
+    if let Some(i) = (0..mesh.nb_polygons()).find(|&i| mesh.polygon(i).len() > 255) {
+        return Err(IoError::unsupported(path, format!("polygon {i} has more than 255 vertices")));
+    }
+    let format = if binary { "binary_little_endian" } else { "ascii" };
+    write!(
+        w,
+        "ply\nformat {format} 1.0\ncomment written by qmesh\nelement vertex {}\nproperty double x\n\
+         property double y\nproperty double z\nelement face {}\nproperty list uchar int vertex_indices\nend_header\n",
+        mesh.points.len(),
+        mesh.nb_polygons()
+    )
+    .map_err(io)?;
+    for p in &mesh.points {
+        if binary {
+            for x in p {
+                w.write_all(&x.to_le_bytes()).map_err(io)?;
+            }
+        } else {
+            writeln!(w, "{} {} {}", p[0], p[1], p[2]).map_err(io)?;
+        }
+    }
+    for i in 0..mesh.nb_polygons() {
+        let p = mesh.polygon(i);
+        if binary {
+            w.write_all(&[p.len() as u8]).map_err(io)?;
+            for &v in p {
+                w.write_all(&(v as i32).to_le_bytes()).map_err(io)?;
+            }
+        } else {
+            let ids: Vec<String> = p.iter().map(u32::to_string).collect();
+            writeln!(w, "{} {}", p.len(), ids.join(" ")).map_err(io)?;
+        }
+    }
+    Ok(())
+}

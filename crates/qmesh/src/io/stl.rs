@@ -106,3 +106,57 @@ fn read_binary(path: &Path, data: &[u8], w: &mut Welder) -> IoResult<()> {
     }
     Ok(())
 }
+
+/// The triangles of the mesh's polygons (fans from each polygon's first vertex).
+fn triangles(mesh: &IndexedMesh) -> impl Iterator<Item = [[f64; 3]; 3]> + '_ {
+    (0..mesh.nb_polygons()).flat_map(move |i| {
+        let p = mesh.polygon(i);
+        (1..p.len().saturating_sub(1)).map(move |k| [p[0], p[k], p[k + 1]].map(|v| mesh.points[v as usize]))
+    })
+}
+
+/// The unit normal of a triangle (zero when degenerate).
+fn normal(t: &[[f64; 3]; 3]) -> [f64; 3] {
+    use crate::geom::{cross, sub};
+    let n = cross(sub(t[1], t[0]), sub(t[2], t[0]));
+    let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+    if len > 0.0 { n.map(|x| x / len) } else { [0.0; 3] }
+}
+
+/// Writes the mesh's polygons as STL triangles (fan-triangulated), ASCII or binary
+/// (little-endian, 32-bit floats: coordinates are rounded to single precision, as the
+/// format holds).
+///
+/// # Errors
+/// An I/O error of `w`.
+pub fn write(path: &Path, mesh: &IndexedMesh, binary: bool, w: &mut dyn std::io::Write) -> IoResult<()> {
+    let io = |e| IoError::io(path, e);
+    if binary {
+        let mut header = [0u8; 80];
+        let text = b"binary STL written by qmesh";
+        header[..text.len()].copy_from_slice(text);
+        w.write_all(&header).map_err(io)?;
+        let n = u32::try_from(triangles(mesh).count())
+            .map_err(|_| IoError::unsupported(path, "more than 2^32 triangles for binary STL"))?;
+        w.write_all(&n.to_le_bytes()).map_err(io)?;
+        for t in triangles(mesh) {
+            for v in std::iter::once(normal(&t)).chain(t) {
+                for x in v {
+                    w.write_all(&(x as f32).to_le_bytes()).map_err(io)?;
+                }
+            }
+            w.write_all(&[0, 0]).map_err(io)?;
+        }
+        return Ok(());
+    }
+    writeln!(w, "solid qmesh").map_err(io)?;
+    for t in triangles(mesh) {
+        let n = normal(&t);
+        writeln!(w, "  facet normal {} {} {}\n    outer loop", n[0], n[1], n[2]).map_err(io)?;
+        for p in t {
+            writeln!(w, "      vertex {} {} {}", p[0], p[1], p[2]).map_err(io)?;
+        }
+        writeln!(w, "    endloop\n  endfacet").map_err(io)?;
+    }
+    writeln!(w, "endsolid qmesh").map_err(io)
+}

@@ -269,6 +269,7 @@ fn best_selection_takes_the_highest_metric_first() {
     assert!((quality.evaluate(&g, &cube, a.matched_raw()) - 1.0).abs() < 1e-12);
 }
 
+#[cfg_attr(not(qmesh_data), ignore = "needs the shared data folder ($QMESH_DATA)")]
 #[test]
 fn single_volume_queries_agree_with_2022_signatures() {
     let Some(dir) = common::data_dir() else { return };
