@@ -5,6 +5,7 @@ usage: scripts/check_quality.py [DATA_DIR]   (needs `pip install vtk`; exit 1 on
 Each file is converted by qmesh to legacy VTK (so both tools see the same cells in the
 same order), then every cell's scaled Jacobian is compared to 1e-9 relative."""
 import json
+import os
 import pathlib
 import subprocess
 import sys
@@ -15,7 +16,8 @@ from vtk.util.numpy_support import vtk_to_numpy
 
 root = pathlib.Path(__file__).resolve().parent.parent
 data = pathlib.Path(sys.argv[1] if len(sys.argv) > 1 else root.parent / "shared" / "data")
-qmesh = root / "target" / "release" / "qmesh"
+# $QMESH_BIN (CI: the test build) or the release binary.
+qmesh = pathlib.Path(os.environ["QMESH_BIN"]) if "QMESH_BIN" in os.environ else root / "target" / "release" / "qmesh"
 subprocess.run(["cargo", "build", "--release", "-q"], cwd=root, check=True)
 
 worst, failures, files, cells = 0.0, [], 0, 0

@@ -3,6 +3,7 @@
 without warnings or errors, with the cell arrays qmesh promises.
 
 usage: scripts/check_vtk_output.py [DATA_DIR]   (needs `pip install vtk`; exit 1 on failure)"""
+import os
 import pathlib
 import subprocess
 import sys
@@ -12,7 +13,8 @@ import vtk
 
 root = pathlib.Path(__file__).resolve().parent.parent
 data = pathlib.Path(sys.argv[1] if len(sys.argv) > 1 else root.parent / "shared" / "data")
-qmesh = root / "target" / "release" / "qmesh"
+# $QMESH_BIN (CI: the test build) or the release binary.
+qmesh = pathlib.Path(os.environ["QMESH_BIN"]) if "QMESH_BIN" in os.environ else root / "target" / "release" / "qmesh"
 subprocess.run(["cargo", "build", "--release", "-q"], cwd=root, check=True)
 
 # Collect every warning and error VTK prints.

@@ -1,11 +1,11 @@
-//! Tells the tests whether the shared data folder (`$QMESH_DATA`, default
-//! `../shared/data` beside the repository) is there. Tests that read it carry
-//! `#[cfg_attr(not(qmesh_data), ignore = "…")]`, so that without it cargo's summary
-//! counts them as ignored, with the reason, never as passed. With
-//! `QMESH_REQUIRE_DATA=1` (CI) a missing folder stops the build.
-//!
-//! The folder is looked for when the build script runs (a change of either variable
-//! reruns it); a folder that appears later is seen after `touch crates/qmesh/build.rs`.
+// Tells the tests whether the shared data folder (`$QMESH_DATA`, default
+// `../shared/data` beside the repository) is there. Tests that read it carry
+// `#[cfg_attr(not(qmesh_data), ignore = "…")]`, so that without it cargo's summary
+// counts them as ignored, with the reason, never as passed. With
+// `QMESH_REQUIRE_DATA=1` (CI) a missing folder stops the build.
+//
+// The folder is looked for when the build script runs (a change of either variable
+// reruns it); a folder that appears later is seen after `touch crates/qmesh/build.rs`.
 
 use std::path::PathBuf;
 

@@ -2,11 +2,11 @@
 # Worked examples of the 2025 query-modify engine (qmesh query / qmesh modify), with
 # every mesh made here by qmesh or written below: delete, extend and replace rules on
 # generated grids, counts before and after, and a picture of each result.
-#   examples/query-modify/run.sh            (uses target/release/qmesh, building it if needed)
+#   examples/query-modify/run.sh            (uses $QMESH_BIN, default target/release/qmesh, built if needed)
 set -euo pipefail
 cd "$(dirname "$0")"
 root=$(cd ../.. && pwd)
-Q="$root/target/release/qmesh"
+Q="${QMESH_BIN:-$root/target/release/qmesh}"
 [ -x "$Q" ] || (cd "$root" && cargo build --release --quiet)
 mkdir -p out
 cd out

@@ -3,8 +3,9 @@
 
 mod common;
 
-use qmesh::apps::{marching_cubes_field, mc_face_patterns, mc_pattern_set, mc_volume_patterns, triangulate};
+use qmesh::apps::{McFlags, marching_cubes_field, mc_face_patterns, mc_pattern_set, mc_volume_patterns, triangulate};
 use qmesh::build::{IndexedMesh, build_surface_map};
+use qmesh::pattern::{FlagRule, PatternKind, PatternSet, load_pattern_dir};
 
 /// Open and non-manifold edges and the Euler characteristic of a polygon surface.
 fn topology(s: &IndexedMesh) -> (usize, i64) {
@@ -33,18 +34,25 @@ fn pattern_counts() {
     assert_eq!(mc_volume_patterns().len(), 21);
 }
 
+/// The field of one cube (2×2×2 grid) whose corners in `config` (bit = corner bits
+/// x | y << 1 | z << 2) are inside.
+fn cube_field(config: u32) -> Vec<f32> {
+    (0..8)
+        .map(|idx| {
+            let (i, j, k) = (idx >> 2 & 1, idx >> 1 & 1, idx & 1);
+            let corner = i | j << 1 | k << 2;
+            if config >> corner & 1 == 1 { -1.0 } else { 1.0 }
+        })
+        .collect()
+}
+
 #[test]
 fn every_corner_configuration_is_covered() {
     // One cube per configuration: 256 fields on a 2×2×2 grid.
     for config in 0..256u32 {
-        let values: Vec<f32> = (0..8)
-            .map(|idx| {
-                let (i, j, k) = (idx >> 2 & 1, idx >> 1 & 1, idx & 1);
-                let corner = i | j << 1 | k << 2;
-                if config >> corner & 1 == 1 { -1.0 } else { 1.0 }
-            })
-            .collect();
-        let (surface, r) = marching_cubes_field(&values, [2, 2, 2], 0.0, &mc_pattern_set()).expect("field");
+        let values = cube_field(config);
+        let (surface, r) =
+            marching_cubes_field(&values, [2, 2, 2], 0.0, &mc_pattern_set(), McFlags::Inside).expect("field");
         assert_eq!((r.unmatched_faces, r.unmatched_volumes), (0, 0), "configuration {config:08b}");
         let expect_surface = config != 0 && config != 255;
         assert_eq!(surface.nb_polygons() > 0, expect_surface, "configuration {config:08b}");
@@ -56,7 +64,7 @@ fn sphere_and_torus_have_their_topology() {
     let n = 24;
     let c = (n as f64 - 1.0) / 2.0;
     let sphere = field(n, |x, y, z| ((x - c).powi(2) + (y - c).powi(2) + (z - c).powi(2)).sqrt() - 8.3);
-    let (s, r) = marching_cubes_field(&sphere, [n, n, n], 0.0, &mc_pattern_set()).expect("sphere");
+    let (s, r) = marching_cubes_field(&sphere, [n, n, n], 0.0, &mc_pattern_set(), McFlags::Inside).expect("sphere");
     assert_eq!((r.unmatched_faces, r.unmatched_volumes), (0, 0));
     assert_eq!(topology(&s), (0, 2));
     assert_eq!(topology(&triangulate(&s)), (0, 2));
@@ -64,7 +72,7 @@ fn sphere_and_torus_have_their_topology() {
         let q = ((x - c).powi(2) + (y - c).powi(2)).sqrt() - 6.5;
         (q * q + (z - c).powi(2)).sqrt() - 2.7
     });
-    let (t, _) = marching_cubes_field(&torus, [n, n, n], 0.0, &mc_pattern_set()).expect("torus");
+    let (t, _) = marching_cubes_field(&torus, [n, n, n], 0.0, &mc_pattern_set(), McFlags::Inside).expect("torus");
     assert_eq!(topology(&t), (0, 0));
 }
 
@@ -75,7 +83,7 @@ fn shared_fields_give_closed_surfaces() {
     for (name, n) in [("fields/field_noise_32.f32", 32), ("fields/field_gyroid_64.f32", 64)] {
         let bytes = std::fs::read(dir.join(name)).expect(name);
         let values: Vec<f32> = bytes.chunks_exact(4).map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]])).collect();
-        let (s, r) = marching_cubes_field(&values, [n, n, n], 0.0, &mc_pattern_set()).expect(name);
+        let (s, r) = marching_cubes_field(&values, [n, n, n], 0.0, &mc_pattern_set(), McFlags::Inside).expect(name);
         assert_eq!((r.unmatched_faces, r.unmatched_volumes), (0, 0), "{name}");
         let (open, chi) = topology(&s);
         assert_eq!(topology(&triangulate(&s)), (open, chi), "{name}: triangulated");
@@ -90,8 +98,123 @@ fn bunny_surface_through_its_octree() {
     let Some(dir) = common::data_dir() else { return };
     let s = qmesh::io::read_surface(&dir.join("surface/bunny.off"), None).expect("bunny");
     let bvh = qmesh::geom::TriangleBvh::from_polygons(&s.points, (0..s.nb_polygons()).map(|i| s.polygon(i)));
-    let (surface, r, hexes) = qmesh::apps::marching_cubes_surface(&bvh, 5, 0.01, &mc_pattern_set()).expect("mc");
+    let (surface, r, hexes) =
+        qmesh::apps::marching_cubes_surface(&bvh, 5, 0.01, &mc_pattern_set(), McFlags::Inside).expect("mc");
     assert_eq!(hexes, 8576);
     assert_eq!((r.unmatched_faces, r.unmatched_volumes), (0, 0));
     assert_eq!(topology(&surface), (0, 2), "a closed sphere-like surface");
+}
+
+/// The authors' marching-cubes set (`patterns/cgal/marching-cubes`, FORMAT.md): its 3
+/// f-patterns and its 29 v-patterns from the CGAL `.mesh` files their program reads
+/// (not the Moka copies), flagged by the cube-corner rule.
+fn authors_set(dir: &std::path::Path) -> PatternSet {
+    let mc = dir.join("patterns/cgal/marching-cubes");
+    let mut set = PatternSet::default();
+    let mut files: Vec<_> = std::fs::read_dir(mc.join("vpattern")).unwrap().map(|e| e.unwrap().path()).collect();
+    files.retain(|p| p.is_file());
+    files.push(mc.join("fpattern"));
+    for f in files {
+        let loaded = load_pattern_dir(&f, FlagRule::Corners);
+        assert!(loaded.skipped.is_empty(), "{}: {:?}", f.display(), loaded.skipped.first().map(|s| &s.reason));
+        loaded.patterns.into_iter().for_each(|p| {
+            set.insert(p);
+        });
+    }
+    assert_eq!((set.count(PatternKind::Face), set.count(PatternKind::Volume)), (3, 29));
+    set
+}
+
+#[cfg_attr(not(qmesh_data), ignore = "needs the shared data folder ($QMESH_DATA)")]
+#[test]
+fn authors_set_covers_every_configuration_and_closes_the_bunny() {
+    let Some(dir) = common::data_dir() else { return };
+    let set = authors_set(&dir);
+    for config in 1..255u32 {
+        let (surface, r) = marching_cubes_field(&cube_field(config), [2, 2, 2], 0.0, &set, McFlags::Corners).unwrap();
+        assert_eq!((r.unmatched_faces, r.unmatched_volumes), (0, 0), "configuration {config:08b}");
+        assert!(surface.nb_polygons() > 0);
+    }
+    let s = qmesh::io::read_surface(&dir.join("surface/bunny.off"), None).expect("bunny");
+    let bvh = qmesh::geom::TriangleBvh::from_polygons(&s.points, (0..s.nb_polygons()).map(|i| s.polygon(i)));
+    let (surface, r, _) = qmesh::apps::marching_cubes_surface(&bvh, 5, 0.01, &set, McFlags::Corners).unwrap();
+    assert_eq!((r.unmatched_faces, r.unmatched_volumes), (0, 0));
+    assert_eq!(topology(&triangulate(&surface)), (0, 2), "closed, as with qmesh's own set");
+}
+
+/// What a one-cube surface cuts on the cube's faces (its open edges, as point pairs)
+/// and how many pieces it has: equal for two sets means the same surface up to the
+/// triangulation of its polygons.
+fn cuts(s: &IndexedMesh) -> (Vec<[[i64; 3]; 2]>, usize) {
+    let mut uses: std::collections::HashMap<[u32; 2], Vec<usize>> = Default::default();
+    for i in 0..s.nb_polygons() {
+        let p = s.polygon(i);
+        for k in 0..p.len() {
+            let (a, b) = (p[k], p[(k + 1) % p.len()]);
+            uses.entry([a.min(b), a.max(b)]).or_default().push(i);
+        }
+    }
+    let at = |v: u32| s.points[v as usize].map(|x| (x * 8.0).round() as i64);
+    let mut open: Vec<[[i64; 3]; 2]> = uses
+        .iter()
+        .filter(|(_, p)| p.len() == 1)
+        .map(|(e, _)| {
+            let mut seg = [at(e[0]), at(e[1])];
+            seg.sort();
+            seg
+        })
+        .collect();
+    open.sort();
+    let mut piece: Vec<usize> = (0..s.nb_polygons()).collect();
+    fn root(p: &mut [usize], x: usize) -> usize {
+        if p[x] != x {
+            p[x] = root(p, p[x]);
+        }
+        p[x]
+    }
+    for polys in uses.values() {
+        for w in polys.windows(2) {
+            let (a, b) = (root(&mut piece, w[0]), root(&mut piece, w[1]));
+            piece[a] = b;
+        }
+    }
+    let pieces = (0..s.nb_polygons()).filter(|&i| root(&mut piece, i) == i).count();
+    (open, pieces)
+}
+
+/// Whether a configuration has an ambiguous face: two inside corners on a diagonal.
+fn has_ambiguous_face(config: u32) -> bool {
+    const FACES: [[u32; 4]; 6] = [[0, 2, 6, 4], [1, 3, 7, 5], [0, 1, 5, 4], [2, 3, 7, 6], [0, 1, 3, 2], [4, 5, 7, 6]];
+    FACES.iter().any(|f| {
+        let s = f.map(|c| config >> c & 1);
+        s[0] == s[2] && s[1] == s[3] && s[0] != s[1]
+    })
+}
+
+/// The comparison of the two sets (issue 15, item 7): on 174 of the 254 configurations
+/// the surfaces are the same up to triangulation (the authors' v-patterns triangulate
+/// the cut polygons, some around an extra inner vertex); the 80 others all have an ambiguous face, where the authors'
+/// f-pattern cuts a fixed pair of opposite corners whatever their side while qmesh's
+/// cuts off the inside ones (their choice agrees with qmesh's on the other 40
+/// configurations with an ambiguous face).
+#[cfg_attr(not(qmesh_data), ignore = "needs the shared data folder ($QMESH_DATA)")]
+#[test]
+fn authors_set_differs_from_qmeshs_only_on_ambiguous_faces() {
+    let Some(dir) = common::data_dir() else { return };
+    let theirs = authors_set(&dir);
+    let ours = mc_pattern_set();
+    let (mut same, mut differ, mut ambiguous_same) = (0, 0, 0);
+    for config in 1..255u32 {
+        let values = cube_field(config);
+        let (a, _) = marching_cubes_field(&values, [2, 2, 2], 0.0, &ours, McFlags::Inside).unwrap();
+        let (b, _) = marching_cubes_field(&values, [2, 2, 2], 0.0, &theirs, McFlags::Corners).unwrap();
+        if cuts(&a) == cuts(&b) {
+            same += 1;
+            ambiguous_same += usize::from(has_ambiguous_face(config));
+        } else {
+            differ += 1;
+            assert!(has_ambiguous_face(config), "configuration {config:08b} differs without an ambiguous face");
+        }
+    }
+    assert_eq!((same, differ, ambiguous_same), (174, 80, 40));
 }

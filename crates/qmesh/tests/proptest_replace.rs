@@ -6,7 +6,7 @@
 use std::sync::OnceLock;
 
 use proptest::prelude::*;
-use qmesh::apps::{GeneratedKind, generated_pattern_set, marching_cubes, mc_pattern_set};
+use qmesh::apps::{GeneratedKind, McFlags, generated_pattern_set, marching_cubes, mc_pattern_set};
 use qmesh::build::{BuildOptions, build_volume_map};
 use qmesh::cmap::{CMap3, Dart, Orbit};
 use qmesh::generate::{hex_grid, tet_grid};
@@ -114,7 +114,7 @@ proptest! {
             let (p, q) = (pos[a as usize], pos[b as usize]);
             [0, 1, 2].map(|k| 0.5 * (p[k] + q[k]))
         };
-        let (surface, r) = marching_cubes(&mut m, &ins, &mid, &sets()[2]).expect("marching cubes");
+        let (surface, r) = marching_cubes(&mut m, &ins, &mid, &sets()[2], McFlags::Inside).expect("marching cubes");
         prop_assert!(m.is_valid().is_empty());
         prop_assert_eq!(m.count_cells().euler_characteristic(3), before.euler_characteristic(3));
         if removals.is_empty() {

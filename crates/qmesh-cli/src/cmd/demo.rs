@@ -7,8 +7,8 @@ use std::time::Instant;
 
 use anyhow::Result;
 use qmesh::apps::{
-    GeneratedKind, SubdivideOptions, conformal, generated_pattern_set, marching_cubes_field, marching_cubes_surface,
-    mc_pattern_set, subdivide, tet_to_hex, triangulate,
+    GeneratedKind, McFlags, SubdivideOptions, conformal, generated_pattern_set, marching_cubes_field,
+    marching_cubes_surface, mc_pattern_set, subdivide, tet_to_hex, triangulate,
 };
 use qmesh::build::{BuildOptions, IndexedMesh, build_surface_map, build_volume_map, extract};
 use qmesh::generate::{hex_grid, tet_grid, torus_surface};
@@ -68,7 +68,7 @@ pub fn run(a: Args) -> Result<ExitCode> {
 
     // 2. Marching cubes (Algorithm 6) of the torus's octree and of a field.
     let mc = mc_pattern_set();
-    let (surface, r, _) = marching_cubes_surface(&bvh, 5, 0.01, &mc).map_err(anyhow::Error::msg)?;
+    let (surface, r, _) = marching_cubes_surface(&bvh, 5, 0.01, &mc, McFlags::Inside).map_err(anyhow::Error::msg)?;
     let tri = triangulate(&surface);
     let chi = build_surface_map(&tri)
         .map(|(m, _)| m.count_cells().euler_characteristic(2).to_string())
@@ -84,7 +84,7 @@ pub fn run(a: Args) -> Result<ExitCode> {
             (p[0].sin() * p[1].cos() + p[1].sin() * p[2].cos() + p[2].sin() * p[0].cos()) as f32
         })
         .collect();
-    let (g, r) = marching_cubes_field(&field, [n, n, n], 0.0, &mc).map_err(anyhow::Error::msg)?;
+    let (g, r) = marching_cubes_field(&field, [n, n, n], 0.0, &mc, McFlags::Inside).map_err(anyhow::Error::msg)?;
     let what = format!(
         "marching cubes of a gyroid field 40³: {} polygons, {} f-/{} v-patterns",
         g.nb_polygons(),

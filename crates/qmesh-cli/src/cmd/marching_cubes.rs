@@ -5,11 +5,11 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use anyhow::{Context, Result, bail};
-use qmesh::apps::{marching_cubes_field, marching_cubes_surface, mc_pattern_set, triangulate};
+use qmesh::apps::{McFlags, marching_cubes_field, marching_cubes_surface, mc_pattern_set, triangulate};
 use qmesh::build::build_surface_map;
 use qmesh::geom::TriangleBvh;
 use qmesh::io::{WriteOptions, read_surface, resolve_format, write_indexed};
-use qmesh::pattern::{FlagRule, PatternSet};
+use qmesh::pattern::{FlagRule, PatternKind, PatternSet};
 use serde_json::json;
 
 use super::parse_format;
@@ -41,6 +41,11 @@ pub struct Args {
     /// Repeat the option or separate folders with commas.
     #[arg(long, value_delimiter = ',')]
     pub patterns: Vec<PathBuf>,
+    /// Which darts are flagged: `inside` (inside corners: qmesh's generated set, flags
+    /// in the files' marks) or `corners` (the cube's corners, inside or not: the authors'
+    /// set). Default: `inside` when the pattern files carry flag marks, else `corners`.
+    #[arg(long)]
+    pub flags: Option<McFlagsArg>,
     /// Split the polygons into triangles.
     #[arg(long)]
     pub triangulate: bool,
@@ -51,23 +56,69 @@ pub struct Args {
     pub report: super::ReportArgs,
 }
 
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum McFlagsArg {
+    /// Darts at inside corners (inside/outside is part of the query).
+    Inside,
+    /// Darts at the cube's corners (only the split boundary's topology is queried).
+    Corners,
+}
+
+/// The pattern set and flag rule for marching cubes: the built-in set, or the
+/// folders' patterns read with the rule asked for (or the one their files imply).
+fn mc_patterns(a: &Args) -> Result<(PatternSet, McFlags)> {
+    if a.patterns.is_empty() {
+        if a.flags == Some(McFlagsArg::Corners) {
+            bail!("--flags corners needs --patterns (the built-in set flags inside corners)");
+        }
+        return Ok((mc_pattern_set(), McFlags::Inside));
+    }
+    let load = |rule: FlagRule| -> Result<PatternSet> {
+        let mut set = PatternSet::default();
+        for dir in &a.patterns {
+            super::patterns::pattern_dir(dir, rule)?.patterns.into_iter().for_each(|p| {
+                set.insert(p);
+            });
+        }
+        Ok(set)
+    };
+    let flags = match a.flags {
+        Some(McFlagsArg::Inside) => McFlags::Inside,
+        Some(McFlagsArg::Corners) => McFlags::Corners,
+        None => {
+            // Inside-corner marks (qmesh's sets): every v-pattern marks some of its cube
+            // corners and nothing else. The authors' files carry no such marks (a few
+            // hold stray modeller marks): their rule is the cube corners.
+            let marked = load(FlagRule::File)?;
+            let corners = load(FlagRule::Corners)?;
+            let flagged = |p: &qmesh::pattern::Pattern| -> Vec<qmesh::cmap::Dart> {
+                p.map.darts().filter(|&d| p.map.is_marked(d, p.flags)).collect()
+            };
+            let geometric: std::collections::HashMap<&std::path::Path, Vec<qmesh::cmap::Dart>> =
+                corners.patterns.iter().map(|p| (p.file.as_path(), flagged(p))).collect();
+            let inside_marks = marked.patterns.iter().filter(|p| p.kind == PatternKind::Volume).all(|p| {
+                let (marks, at_corners) = (flagged(p), geometric.get(p.file.as_path()));
+                !marks.is_empty() && at_corners.is_some_and(|c| marks.iter().all(|d| c.contains(d)))
+            });
+            if inside_marks {
+                return Ok((marked, McFlags::Inside));
+            }
+            if !a.report.quiet && !a.report.json {
+                eprintln!("note: the patterns flag the cube's corners (the authors' rule): --flags corners");
+            }
+            return Ok((corners, McFlags::Corners));
+        }
+    };
+    let rule = if flags == McFlags::Inside { FlagRule::File } else { FlagRule::Corners };
+    Ok((load(rule)?, flags))
+}
+
 pub fn run(a: Args) -> Result<ExitCode> {
     for input in a.surface.iter().chain(&a.field) {
         a.output.check_against(input)?;
     }
     let out_format = resolve_format(&a.output.output, None)?;
-    let set = if a.patterns.is_empty() {
-        mc_pattern_set()
-    } else {
-        // Flags are not geometric here (inside corners): they come from the files' marks.
-        let mut set = PatternSet::default();
-        for dir in &a.patterns {
-            super::patterns::pattern_dir(dir, FlagRule::File)?.patterns.into_iter().for_each(|p| {
-                set.insert(p);
-            });
-        }
-        set
-    };
+    let (set, flags) = mc_patterns(&a)?;
     let pb = crate::progress::spinner("marching cubes", a.report.quiet || a.report.json);
     let (polygons, r, hexes, source) = if let Some(field) = &a.field {
         let bytes = std::fs::read(field).with_context(|| format!("reading {}", field.display()))?;
@@ -79,7 +130,7 @@ pub fn run(a: Args) -> Result<ExitCode> {
             bail!("--dims takes three sizes NX,NY,NZ, got {:?}", a.dims);
         };
         let dims = [nx, ny, nz];
-        let (s, r) = marching_cubes_field(&values, dims, a.iso, &set)
+        let (s, r) = marching_cubes_field(&values, dims, a.iso, &set, flags)
             .map_err(|e| anyhow::anyhow!("{}: {e}", field.display()))?;
         let hexes = (dims[0] - 1) * (dims[1] - 1) * (dims[2] - 1);
         (s, r, hexes, field.clone())
@@ -94,7 +145,7 @@ pub fn run(a: Args) -> Result<ExitCode> {
             bail!("{}: no polygon", path.display());
         }
         let (s, r, hexes) =
-            marching_cubes_surface(&bvh, a.levels, a.margin, &set).map_err(|e| anyhow::anyhow!("{e}"))?;
+            marching_cubes_surface(&bvh, a.levels, a.margin, &set, flags).map_err(|e| anyhow::anyhow!("{e}"))?;
         (s, r, hexes, path)
     };
     pb.finish_and_clear();
@@ -112,6 +163,7 @@ pub fn run(a: Args) -> Result<ExitCode> {
             "output": a.output.output.display().to_string(),
             "hexahedra": hexes,
             "f_patterns": r.f_patterns,
+            "flags": if flags == McFlags::Inside { "inside" } else { "corners" },
             "v_patterns": r.v_patterns,
             "edges_split": r.edges_split,
             "faces_replaced": r.faces_replaced,

@@ -144,6 +144,15 @@ pub fn run(a: Args) -> Result<ExitCode> {
         for g in &report.duplicates {
             println!("duplicate: {}", g.join(" = "));
         }
+        if !report.ambiguous.is_empty() {
+            println!(
+                "ambiguous: a pattern whose boundary maps onto itself in more than one way that keeps the \
+                 flags (automorphisms > 1): a matching cell can be replaced in several placements, and the \
+                 one taken is fixed by the pattern's canonical start dart, not by the cell's geometry or its \
+                 inside/outside. Harmless when the inside is symmetric too (subdivision); for the marching-cubes \
+                 face with four split edges it decides which two opposite corners are cut off."
+            );
+        }
         if let Some(r) = &coverage {
             println!(
                 "coverage on {}: {} faces and {} volumes matched, {} faces and {} volumes in {} configurations uncovered",

@@ -24,6 +24,19 @@ pub struct McReport {
     pub seconds: f64,
 }
 
+/// Which input darts carry the flags that matching respects (2022 §7.2).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum McFlags {
+    /// Darts at inside corners: inside/outside is part of the query, as in qmesh's
+    /// generated set ([`super::mc_pattern_set`], flags in the files' marks).
+    #[default]
+    Inside,
+    /// Darts at the cube's corners, inside or not: only the topology of the split
+    /// boundary is queried, as in the authors' set (`patterns/cgal/marching-cubes`,
+    /// flags by the geometric corner rule).
+    Corners,
+}
+
 /// Extracts the surface between the vertices with `inside[v]` and the others (vertex
 /// ids of `map`) with the patterns of `set` (usually [`super::mc_pattern_set`]); `crossing(a, b)` places the new vertex on an edge from inside vertex
 /// `a` to outside vertex `b`. The map keeps the replaced cells; the surface's polygons
@@ -36,6 +49,7 @@ pub fn marching_cubes(
     inside: &[bool],
     crossing: &dyn Fn(u32, u32) -> [f64; 3],
     set: &PatternSet,
+    flags: McFlags,
 ) -> Result<(IndexedMesh, McReport), MapError> {
     let t = Instant::now();
     let mut r = McReport {
@@ -47,7 +61,7 @@ pub fn marching_cubes(
     let is_in = |v: u32| inside.get(v as usize).copied().unwrap_or(false);
     let flag = map.reserve_mark()?;
     for d in map.darts().collect::<Vec<_>>() {
-        if is_in(map.vertex_of(d)) {
+        if flags == McFlags::Corners || is_in(map.vertex_of(d)) {
             map.mark(d, flag);
         }
     }
@@ -156,6 +170,7 @@ pub fn marching_cubes_field(
     dims: [usize; 3],
     iso: f64,
     set: &PatternSet,
+    flags: McFlags,
 ) -> Result<(IndexedMesh, McReport), String> {
     let [nx, ny, nz] = dims;
     if dims.iter().any(|&n| n < 2) {
@@ -180,7 +195,7 @@ pub fn marching_cubes_field(
         let (p, q) = (map_position(a, nx, ny), map_position(b, nx, ny));
         [0, 1, 2].map(|k| p[k] + t * (q[k] - p[k]))
     };
-    marching_cubes(&mut map, &inside, &crossing, set).map_err(|e| e.to_string())
+    marching_cubes(&mut map, &inside, &crossing, set, flags).map_err(|e| e.to_string())
 }
 
 fn map_position(v: u32, nx: usize, ny: usize) -> [f64; 3] {
@@ -199,6 +214,7 @@ pub fn marching_cubes_surface(
     levels: u8,
     margin: f64,
     set: &PatternSet,
+    flags: McFlags,
 ) -> Result<(IndexedMesh, McReport, usize), String> {
     let tree = super::subdivide::octree_around(surface, levels, margin);
     let hexes = tree.to_mesh();
@@ -211,6 +227,6 @@ pub fn marching_cubes_surface(
         let (p, q) = (points[a as usize], points[b as usize]);
         [0, 1, 2].map(|k| 0.5 * (p[k] + q[k]))
     };
-    let (s, r) = marching_cubes(&mut map, &inside, &crossing, set).map_err(|e| e.to_string())?;
+    let (s, r) = marching_cubes(&mut map, &inside, &crossing, set, flags).map_err(|e| e.to_string())?;
     Ok((s, r, tree.leaves.len()))
 }

@@ -5,6 +5,7 @@
 //! expected. Declared counts are checked against the bytes left before allocating.
 
 mod atomic;
+mod cgal_lcc;
 mod error;
 mod gmsh;
 mod lexer;
@@ -16,6 +17,7 @@ mod ply;
 mod stl;
 mod vtk_legacy;
 mod vtu;
+mod vtu_headers;
 
 use std::path::Path;
 use std::time::Instant;
@@ -124,6 +126,8 @@ pub fn parse(path: &Path, data: &[u8], format: Format) -> IoResult<Loaded> {
     Ok(match format {
         Format::Vtk => Loaded::Indexed(vtk_legacy::read(path, data)?),
         Format::Vtu => Loaded::Indexed(vtu::read(path, data)?),
+        // The authors' marching-cubes patterns use CGAL's polyhedral text under `.mesh`.
+        Format::Medit if cgal_lcc::looks_like(data) => Loaded::Indexed(cgal_lcc::read(path, data)?),
         Format::Medit => Loaded::Indexed(medit::read(path, data)?),
         Format::Msh => Loaded::Indexed(gmsh::read(path, data)?),
         Format::Off => Loaded::Indexed(off::read(path, data)?),

@@ -63,12 +63,37 @@ fn xml_error_line(data: &[u8]) -> usize {
     1 + data[..at.min(data.len())].iter().filter(|&&b| b == b'\n').count()
 }
 
+/// A person's reading of a vtkio error (its `Display` shows Rust debug text for the
+/// nested errors) and the line it is about.
+fn describe(e: &vtkio::Error, data: &[u8]) -> (String, usize) {
+    use vtkio::xml::{Error as XmlError, ValidationError as V};
+    let at_syntax = xml_error_line(data);
+    match e {
+        vtkio::Error::XML(XmlError::Validation(V::DataArraySizeMismatch { name, expected, actual })) => {
+            // vtkio names the point coordinates "".
+            let (what, line) = if name.is_empty() {
+                ("the point coordinates".to_string(), find_line(data, b"<Points"))
+            } else {
+                (format!("DataArray '{name}'"), find_line(data, format!("Name=\"{name}\"").as_bytes()))
+            };
+            (format!("{what} hold {actual} values, {expected} expected"), line.unwrap_or(at_syntax))
+        }
+        vtkio::Error::XML(XmlError::Validation(v)) => (format!("invalid VTK XML content: {v}"), at_syntax),
+        vtkio::Error::XML(XmlError::XML(x)) => (format!("malformed XML: {x}"), at_syntax),
+        vtkio::Error::XML(XmlError::Base64Decode(_)) => ("binary data that is not valid base64".into(), at_syntax),
+        vtkio::Error::XML(XmlError::Deserialization(d)) => {
+            (format!("expected a VTK XML UnstructuredGrid file: {d}"), at_syntax)
+        }
+        other => (format!("expected a VTK XML UnstructuredGrid file: {other}"), at_syntax),
+    }
+}
+
 /// Parses a `.vtu` file (inline or appended data, ASCII, base64 or raw, compressed or not).
 pub fn read(path: &Path, data: &[u8]) -> IoResult<IndexedMesh> {
-    let vtk = Vtk::parse_xml(std::io::BufReader::new(data)).map_err(|e| IoError::Parse {
-        path: path.into(),
-        at: Location::Line(xml_error_line(data)),
-        msg: format!("expected a VTK XML UnstructuredGrid file: {e}"),
+    super::vtu_headers::check(path, data)?;
+    let vtk = Vtk::parse_xml(std::io::BufReader::new(data)).map_err(|e| {
+        let (msg, line) = describe(&e, data);
+        IoError::Parse { path: path.into(), at: Location::Line(line), msg }
     })?;
     // vtkio keeps no positions: point content errors at the <Cells> element (what
     // they are about), or the file's first line.
