@@ -15,7 +15,7 @@ use qmesh::generate::{hex_grid, tet_grid, torus_surface};
 use qmesh::geom::TriangleBvh;
 use qmesh::io::{Format, IoError, WriteOptions, write_atomically, write_indexed};
 use qmesh::pattern::FlagRule;
-use qmesh::render::{Clip, ColorBy, RenderOptions, render};
+use qmesh::render::{Clip, ColorBy, RenderOptions, render_titled};
 use qmesh::replace::{ReplaceOptions, query_replace};
 
 #[derive(clap::Args, Debug)]
@@ -31,7 +31,9 @@ fn save(dir: &Path, name: &str, mesh: &IndexedMesh, what: &str, picture: RenderO
     let format = Format::from_path(&file).unwrap_or(Format::Vtk);
     write_indexed(&file, mesh, format, &WriteOptions::default())?;
     let png = file.with_extension("png");
-    let (canvas, _) = render(mesh, &picture);
+    // The picture font is ASCII.
+    let title = format!("{name}: {what}").replace('χ', "chi").replace('³', "^3");
+    let (canvas, _) = render_titled(mesh, &picture, Some(&title));
     write_atomically(&png, |w| canvas.write_png(w).map_err(|e| IoError::io(&png, e)))?;
     println!("  {what:<62} {name} (+ .png)");
     Ok(())

@@ -6,7 +6,7 @@ use std::process::ExitCode;
 
 use anyhow::{Result, bail};
 use qmesh::io::{IoError, Loaded, read, write_atomically};
-use qmesh::render::{Clip, ColorBy, RenderOptions, render};
+use qmesh::render::{Clip, ColorBy, RenderOptions, render_titled};
 use serde_json::json;
 
 use super::parse_format;
@@ -133,13 +133,28 @@ pub fn run(a: Args) -> Result<ExitCode> {
         Loaded::Map(map) => qmesh::build::extract(&map).0,
     };
     let pb = crate::progress::spinner("render", a.report.quiet || a.report.json);
-    let (canvas, r) = render(&mesh, &opts);
+    let colouring = match opts.color_by {
+        ColorBy::Type => "cell type",
+        ColorBy::Level => "level",
+        ColorBy::Quality => "scaled Jacobian",
+        ColorBy::Label => "label",
+        ColorBy::Component => "component",
+    };
+    let cells = if mesh.is_volume() { mesh.nb_cells() } else { mesh.nb_polygons() };
+    let name = a.input.file_name().map_or_else(|| a.input.display().to_string(), |n| n.to_string_lossy().into_owned());
+    let clipped = a.clip.as_deref().map(|c| format!(", clipped {c}")).unwrap_or_default();
+    let title = format!(
+        "{name} - {cells} {} - coloured by {colouring}{clipped}",
+        if mesh.is_volume() { "cells" } else { "polygons" }
+    );
+    let (canvas, r) = render_titled(&mesh, &opts, Some(&title));
     pb.finish_and_clear();
     write_atomically(&a.output, |w| canvas.write_png(w).map_err(|e| IoError::io(&a.output, e)))?;
     if a.report.json {
         let j = json!({
             "input": a.input.display().to_string(), "output": a.output.display().to_string(),
             "cells": r.cells, "cells_drawn": r.cells_drawn, "triangles": r.triangles,
+            "title": title, "legend": r.legend,
             "render_seconds": r.seconds, "peak_memory_bytes": crate::memory::peak_rss_bytes(),
         });
         println!("{}", serde_json::to_string_pretty(&j)?);

@@ -273,3 +273,36 @@ fn vtu_size_headers_are_checked_and_errors_are_readable() {
     assert_eq!(code, 2);
     assert!(err.contains("line 6") && err.contains("says 8 bytes, but it holds 96"), "{err}");
 }
+
+/// The box of non-white pixels of a PNG below `top`: (x0, y0, x1, y1).
+fn ink_box(path: &std::path::Path, top: u32) -> (u32, u32, u32, u32) {
+    let decoder = png::Decoder::new(std::io::BufReader::new(std::fs::File::open(path).unwrap()));
+    let mut reader = decoder.read_info().unwrap();
+    let mut buf = vec![0; reader.output_buffer_size().unwrap()];
+    let info = reader.next_frame(&mut buf).unwrap();
+    let mut b = (u32::MAX, u32::MAX, 0, 0);
+    for (i, p) in buf[..info.buffer_size()].chunks(3).enumerate() {
+        let (x, y) = (i as u32 % info.width, i as u32 / info.width);
+        if y >= top && p != [255, 255, 255] {
+            b = (b.0.min(x), b.1.min(y), b.2.max(x), b.3.max(y));
+        }
+    }
+    b
+}
+
+/// Item 11: pictures have a title line, the mesh fills most of the frame, and a
+/// quality legend on an all-equal mesh says so instead of listing unused colours.
+#[test]
+fn pictures_have_a_title_fill_the_frame_and_a_useful_legend() {
+    let grid = temp("fh-render.vtk");
+    assert_eq!(qmesh(&["generate", "grid", "--size", "8,2,1", "-o", s(&grid)]).0, 0);
+    let png = temp("fh-render.png");
+    let j = json_of(&["render", s(&grid), "-o", s(&png), "--color-by", "quality", "--size", "400,300", "--json"]);
+    assert_eq!(j["title"], "fh-render.vtk - 16 cells - coloured by scaled Jacobian");
+    assert_eq!(j["legend"], serde_json::json!(["scaled jacobian: all 1.00"]));
+    // Below the legend band, a long slab spans most of the width.
+    let (x0, _, x1, _) = ink_box(&png, 120);
+    assert!(x1 - x0 > 300, "the mesh spans {} of 400 pixels", x1 - x0);
+    let j = json_of(&["render", s(&grid), "-o", s(&png), "--json"]);
+    assert_eq!(j["legend"], serde_json::json!(["hex 16"]));
+}

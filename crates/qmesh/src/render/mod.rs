@@ -7,4 +7,4 @@ mod scene;
 
 pub use font::{draw_text, text_width};
 pub use raster::{Canvas, Rgb};
-pub use scene::{Clip, ColorBy, RenderOptions, RenderReport, render};
+pub use scene::{Clip, ColorBy, RenderOptions, RenderReport, render, render_titled};

@@ -62,6 +62,8 @@ pub struct RenderReport {
     pub cells: usize,
     pub cells_drawn: usize,
     pub triangles: usize,
+    /// The legend's entries, top to bottom.
+    pub legend: Vec<String>,
     pub seconds: f64,
 }
 
@@ -143,15 +145,28 @@ fn colours(mesh: &IndexedMesh, by: ColorBy) -> (Vec<Rgb>, Vec<(Rgb, String)>) {
         ColorBy::Label => categorical((0..n).map(|i| i64::from(mesh.label(i).unwrap_or(0))).collect(), "label"),
         ColorBy::Component => categorical(components(mesh).into_iter().map(|c| c as i64).collect(), "component"),
         ColorBy::Quality => {
-            let q: Vec<Rgb> =
-                (0..n).map(|i| cell_scaled_jacobian(mesh, i).map_or(PALETTE[9], quality_colour)).collect();
-            let legend = [0.0, 0.25, 0.5, 0.75, 1.0]
-                .iter()
-                .map(|&v| (quality_colour(v), format!("scaled jacobian {v:.2}")))
-                .collect();
-            (q, legend)
+            let values: Vec<Option<f64>> = (0..n).map(|i| cell_scaled_jacobian(mesh, i)).collect();
+            let q: Vec<Rgb> = values.iter().map(|v| v.map_or(PALETTE[9], quality_colour)).collect();
+            (q, quality_legend(values.iter().flatten().copied()))
         }
     }
+}
+
+/// Legend entries spanning the scaled Jacobians present (the colours stay absolute:
+/// red ≤ 0, yellow 0.5, green 1); one entry when they are all (nearly) equal.
+fn quality_legend(values: impl Iterator<Item = f64>) -> Vec<(Rgb, String)> {
+    let (lo, hi) = values.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| (lo.min(v), hi.max(v)));
+    if lo > hi {
+        return Vec::new();
+    }
+    if hi - lo < 5e-3 {
+        return vec![(quality_colour(lo), format!("scaled jacobian: all {:.2}", 0.5 * (lo + hi)))];
+    }
+    (0..5)
+        .map(|k| lo + (hi - lo) * f64::from(k) / 4.0)
+        .rev()
+        .map(|v| (quality_colour(v), format!("scaled jacobian {v:.2}")))
+        .collect()
 }
 
 /// Connected components of cells sharing a vertex.
@@ -183,6 +198,15 @@ fn components(mesh: &IndexedMesh) -> Vec<usize> {
 
 /// Renders the cells of `mesh` (or its polygons, for a surface).
 pub fn render(mesh: &IndexedMesh, opts: &RenderOptions) -> (Canvas, RenderReport) {
+    render_titled(mesh, opts, None)
+}
+
+/// Height of the title band, in pixels.
+const TITLE_BAND: usize = 34;
+
+/// As [`render`], with a title line across the top (file, cells, colouring): the mesh
+/// is fitted to the frame below it.
+pub fn render_titled(mesh: &IndexedMesh, opts: &RenderOptions, title: Option<&str>) -> (Canvas, RenderReport) {
     let t = Instant::now();
     let (w, h) = opts.size;
     let mut canvas = Canvas::new(w, h);
@@ -192,6 +216,7 @@ pub fn render(mesh: &IndexedMesh, opts: &RenderOptions) -> (Canvas, RenderReport
     // Cells kept (by the clip) with their faces (outward) and colours.
     let volume = mesh.is_volume();
     let (cell_colours, legend) = if volume { colours(mesh, opts.color_by) } else { (Vec::new(), Vec::new()) };
+    report.legend = legend.iter().map(|l| l.1.clone()).collect();
     let faces_of = |i: usize| -> Vec<Vec<u32>> {
         if volume {
             mesh.cell_faces(i)
@@ -228,18 +253,33 @@ pub fn render(mesh: &IndexedMesh, opts: &RenderOptions) -> (Canvas, RenderReport
             .flat_map(|i| faces_of(i).into_iter().flatten())
             .map(|v| mesh.points[v as usize]),
     );
+    let top = if title.is_some() { TITLE_BAND } else { 0 };
     if bounds.lo[0] > bounds.hi[0] {
-        draw_legend(&mut canvas, &legend);
+        draw_legend(&mut canvas, &legend, top);
+        draw_title(&mut canvas, title);
         report.seconds = t.elapsed().as_secs_f64();
         return (canvas, report);
     }
     let c = bounds.centre();
     let e = bounds.extent();
     let radius = (0.5 * dot(e, e).sqrt()).max(f64::MIN_POSITIVE);
-    let scale = 0.92 * (w.min(h) as f64) / (2.0 * radius);
+    // Fit the kept points' extent on screen (not their bounding sphere) to 92 % of the
+    // frame below the title.
+    let (mut x0, mut x1, mut y0, mut y1) = (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY);
+    for i in (0..count).filter(|&i| kept[i]) {
+        for v in faces_of(i).into_iter().flatten() {
+            let d = sub(mesh.points[v as usize], c);
+            let (x, y) = (dot(d, right), dot(d, up));
+            (x0, x1, y0, y1) = (x0.min(x), x1.max(x), y0.min(y), y1.max(y));
+        }
+    }
+    let (aw, ah) = (w as f64, (h - top.min(h)) as f64);
+    let scale = 0.92 * (aw / (x1 - x0).max(1e-12)).min(ah / (y1 - y0).max(1e-12));
+    let (mx, my) = (0.5 * (x0 + x1), 0.5 * (y0 + y1));
     let project = |p: [f64; 3]| {
         let d = sub(p, c);
-        [w as f64 / 2.0 + scale * dot(d, right), h as f64 / 2.0 - scale * dot(d, up), dot(d, fwd)]
+        let (x, y) = (dot(d, right) - mx, dot(d, up) - my);
+        [aw / 2.0 + scale * x, top as f64 + ah / 2.0 - scale * y, dot(d, fwd)]
     };
     let bias = 1e-3 * radius;
     for i in (0..count).filter(|&i| kept[i]) {
@@ -282,15 +322,24 @@ pub fn render(mesh: &IndexedMesh, opts: &RenderOptions) -> (Canvas, RenderReport
             }
         }
     }
-    draw_legend(&mut canvas, &legend);
+    draw_legend(&mut canvas, &legend, top);
+    draw_title(&mut canvas, title);
     report.seconds = t.elapsed().as_secs_f64();
     (canvas, report)
 }
 
-fn draw_legend(canvas: &mut Canvas, legend: &[(Rgb, String)]) {
+/// The title line, on a white band across the top.
+fn draw_title(canvas: &mut Canvas, title: Option<&str>) {
+    let Some(title) = title else { return };
+    let w = canvas.width;
+    canvas.rect(0, 0, w, TITLE_BAND - 4, [255, 255, 255]);
+    draw_text(canvas, 12, 6, title, 2, [20, 20, 20]);
+}
+
+fn draw_legend(canvas: &mut Canvas, legend: &[(Rgb, String)], top: usize) {
     let scale = 2;
     for (k, (colour, text)) in legend.iter().enumerate() {
-        let y = 12 + k * 22;
+        let y = top + 12 + k * 22;
         canvas.rect(12, y, 16, 16, [40, 40, 40]);
         canvas.rect(14, y + 2, 12, 12, *colour);
         canvas.rect(34, y, text_width(text, scale), 16, [255, 255, 255]);
