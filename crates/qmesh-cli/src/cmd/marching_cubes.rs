@@ -73,15 +73,7 @@ fn mc_patterns(a: &Args) -> Result<(PatternSet, McFlags)> {
         }
         return Ok((mc_pattern_set(), McFlags::Inside));
     }
-    let load = |rule: FlagRule| -> Result<PatternSet> {
-        let mut set = PatternSet::default();
-        for dir in &a.patterns {
-            super::patterns::pattern_dir(dir, rule)?.patterns.into_iter().for_each(|p| {
-                set.insert(p);
-            });
-        }
-        Ok(set)
-    };
+    let load = |rule: FlagRule| super::patterns::merged_sets(&a.patterns, rule);
     let flags = match a.flags {
         Some(McFlagsArg::Inside) => McFlags::Inside,
         Some(McFlagsArg::Corners) => McFlags::Corners,
@@ -101,16 +93,20 @@ fn mc_patterns(a: &Args) -> Result<(PatternSet, McFlags)> {
                 !marks.is_empty() && at_corners.is_some_and(|c| marks.iter().all(|d| c.contains(d)))
             });
             if inside_marks {
+                super::patterns::warn_skipped(&marked);
                 return Ok((marked, McFlags::Inside));
             }
             if !a.report.quiet && !a.report.json {
                 eprintln!("note: the patterns flag the cube's corners (the authors' rule): --flags corners");
             }
+            super::patterns::warn_skipped(&corners);
             return Ok((corners, McFlags::Corners));
         }
     };
     let rule = if flags == McFlags::Inside { FlagRule::File } else { FlagRule::Corners };
-    Ok((load(rule)?, flags))
+    let set = load(rule)?;
+    super::patterns::warn_skipped(&set);
+    Ok((set, flags))
 }
 
 pub fn run(a: Args) -> Result<ExitCode> {

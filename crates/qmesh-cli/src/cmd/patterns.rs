@@ -320,16 +320,16 @@ pub fn path_list(paths: &[PathBuf]) -> String {
     paths.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", ")
 }
 
-pub fn load_sets(dirs: &[PathBuf]) -> Result<Option<PatternSet>> {
-    if dirs.is_empty() {
-        return Ok(None);
-    }
+/// The patterns of every folder (or file) of `dirs` in one set, with `rule`; the files
+/// skipped are listed in the set (see [`warn_skipped`]).
+///
+/// # Errors
+/// A missing folder, or no usable pattern at all.
+pub fn merged_sets(dirs: &[PathBuf], rule: FlagRule) -> Result<PatternSet> {
     let mut set = PatternSet::default();
     for dir in dirs {
-        let s = pattern_dir(dir, FlagRule::Corners)?;
-        for sk in &s.skipped {
-            eprintln!("warning: skipped pattern {}: {}", sk.file.display(), sk.reason);
-        }
+        let s = pattern_dir(dir, rule)?;
+        set.skipped.extend(s.skipped);
         s.patterns.into_iter().for_each(|p| {
             set.insert(p);
         });
@@ -337,6 +337,26 @@ pub fn load_sets(dirs: &[PathBuf]) -> Result<Option<PatternSet>> {
     if set.patterns.is_empty() {
         anyhow::bail!("no usable pattern in {}", path_list(dirs));
     }
+    Ok(set)
+}
+
+/// Prints a warning per pattern file a set skipped.
+pub fn warn_skipped(set: &PatternSet) {
+    for sk in &set.skipped {
+        eprintln!("warning: skipped pattern {}: {}", sk.file.display(), sk.reason);
+    }
+}
+
+/// The `--patterns` folders with the papers' corner flags, or None without any.
+///
+/// # Errors
+/// As [`merged_sets`].
+pub fn load_sets(dirs: &[PathBuf]) -> Result<Option<PatternSet>> {
+    if dirs.is_empty() {
+        return Ok(None);
+    }
+    let set = merged_sets(dirs, FlagRule::Corners)?;
+    warn_skipped(&set);
     Ok(Some(set))
 }
 
