@@ -6,7 +6,7 @@
 set -euo pipefail
 cd "$(dirname "$0")"
 root=$(cd ../.. && pwd)
-Q="$root/target/release/qmesh"
+Q="${QMESH_BIN:-$root/target/release/qmesh}"
 [ -x "$Q" ] || (cd "$root" && cargo build --release --quiet)
 data=${QMESH_DATA:-$root/../shared/data}
 input=${1:-$data/hex/rockerarm.mesh}
