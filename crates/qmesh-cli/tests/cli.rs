@@ -412,3 +412,33 @@ fn tetrahedralize_then_recombine_gives_the_hexahedra_back() {
     assert_eq!(code, 2);
     assert!(err.contains("no hexahedron"), "{err}");
 }
+
+#[test]
+fn terrain_example_runs_the_papers_two_steps_from_its_rule_files() {
+    // 2025 §7.4 on a 16×16 terrain with the rule files and meshes of examples/terrain.
+    let example = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/terrain");
+    let (t, spots, houses) = (temp("terrain.vtk"), temp("terrain_spots.vtk"), temp("terrain_houses.vtk"));
+    let j = json_of(&["generate", "terrain", "--size", "16", "--base", "12", "-o", t.to_str().unwrap(), "--json"]);
+    assert_eq!((j["volumes"].as_u64(), j["darts"].as_u64()), (Some(256), Some(256 * 26)));
+    let rules = |f: &str| example.join(f).to_str().unwrap().to_string();
+    let flatten = rules("flatten.toml");
+    let j = json_of(&["modify", t.to_str().unwrap(), spots.to_str().unwrap(), "--rules", &flatten, "--json"]);
+    let r = &j["rules"][0];
+    assert_eq!((r["op"].as_str(), r["matches"].as_u64()), (Some("apply"), Some(14 * 14)));
+    let spots_made = r["modified"].as_u64().unwrap();
+    assert!(spots_made >= 5, "only {spots_made} spots on 16×16 voxels");
+    assert_eq!(j["volumes"].as_u64(), Some(256 - 8 * spots_made));
+    let house_rules = rules("houses.toml");
+    let j = json_of(&["modify", spots.to_str().unwrap(), houses.to_str().unwrap(), "--rules", &house_rules, "--json"]);
+    let r = &j["rules"][0];
+    assert_eq!((r["matches"].as_u64(), r["modified"].as_u64()), (Some(spots_made), Some(spots_made)));
+    assert_eq!(j["volumes"].as_u64(), Some(256 - 8 * spots_made + 3 * spots_made));
+    assert_eq!(j["valid"], true);
+    // Bad terrain options are refused with the option's name.
+    let (code, _, err) = qmesh(&["generate", "terrain", "--roughness", "2", "-o", t.to_str().unwrap()]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("--roughness must be in (0, 1]"), "{err}");
+    let (code, _, err) = qmesh(&["generate", "terrain", "--size", "4,0", "-o", t.to_str().unwrap()]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("--size takes N or NX,NY"), "{err}");
+}

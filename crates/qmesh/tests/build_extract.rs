@@ -107,3 +107,25 @@ fn shared_faces_and_orientation_errors_name_the_cells() {
     let e = build_volume_map(&mesh, &BuildOptions::default()).unwrap_err().to_string();
     assert!(e.contains("cells 3 and 5") && e.contains("inconsistent orientation"), "{e}");
 }
+
+#[test]
+fn a_polyhedron_with_more_faces_than_points_reads_back() {
+    // The legacy VTK cell list of a polyhedron holds face counts and sizes beside point
+    // indices: a tetrahedron written as one (4 faces, 4 points) must not be read as
+    // "point index 4 out of range".
+    let dir = common::temp_dir("poly-tet");
+    let path = dir.join("tet.vtk");
+    let text = "# vtk DataFile Version 2.0\nt\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 4 double\n\
+        0 0 0 1 0 0 0 1 0 0 0 1\nCELLS 1 18\n17 4 3 0 2 1 3 0 1 3 3 1 2 3 3 0 3 2\nCELL_TYPES 1\n42\n";
+    std::fs::write(&path, text).unwrap();
+    let qmesh::io::Loaded::Indexed(mesh) = qmesh::io::read(&path, None).unwrap() else {
+        panic!("a cell file reads as cells")
+    };
+    assert_eq!((mesh.nb_cells(), mesh.kinds[0]), (1, CellKind::Polyhedron));
+    let (m, _) = build_volume_map(&mesh, &BuildOptions::default()).unwrap();
+    assert_eq!((m.count_cells().volumes, m.nb_darts()), (1, 12));
+    // And a point index beyond the points is still refused, at the cell's line.
+    std::fs::write(&path, text.replace("3 0 3 2\n", "3 0 3 7\n")).unwrap();
+    let e = qmesh::io::read(&path, None).map(|_| ()).unwrap_err().to_string();
+    assert!(e.contains("line 8") && e.contains("point index 7 is out of range"), "{e}");
+}

@@ -16,7 +16,7 @@ pub enum MapError {
     #[error("face of dart {0} is folded onto itself (an edge of it is 2-sewn within the removed face)")]
     DegenerateFace(Dart),
     #[error(
-        "edge of dart {0} is not between exactly two distinct faces: removing it would not merge two faces into one"
+        "edge of dart {0} cannot be removed: it is not between exactly two faces, or removing it would cut its face in two"
     )]
     EdgeNotRemovable(Dart),
     #[error("all 32 marks are reserved")]
@@ -29,4 +29,8 @@ pub enum MapError {
     FaceTooSmall { min: usize, got: usize },
     #[error("edge split needs k >= 1 segments, got {0}")]
     BadSegmentCount(usize),
+    /// A composite operation (a query-apply function) that cannot do its work on this
+    /// match; the primitives it ran before keep the map valid.
+    #[error("{0}")]
+    Refused(String),
 }

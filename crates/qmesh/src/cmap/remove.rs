@@ -8,7 +8,9 @@ use super::storage::CMap3;
 
 impl CMap3 {
     /// Removes the face of `d`, which separates two volumes, merging them into one:
-    /// for each dart x of the face, β2(x) is 2-sewn to β2(β3(x)).
+    /// for each dart x of the face, β2(x) is 2-sewn to β2(β3(x)). An edge that only
+    /// this face bounds inside the merged volume (β2(x) = β3(x): the last face around an
+    /// inner edge when several volumes are merged one face at a time) goes with it.
     ///
     /// ```
     /// use qmesh::cmap::{CMap3, Orbit};
@@ -38,12 +40,15 @@ impl CMap3 {
         }
         for &x in &both {
             match self.beta(x, 2) {
-                Some(o) if !both.contains(&o) => {}
+                Some(o) if !both.contains(&o) || Some(o) == self.beta(x, 3) => {}
                 _ => return Err(MapError::DegenerateFace(d)),
             }
         }
-        let links: Vec<(Dart, Dart)> =
-            side.iter().map(|&x| (self.beta(x, 2).unwrap(), self.beta(self.beta(x, 3).unwrap(), 2).unwrap())).collect();
+        let links: Vec<(Dart, Dart)> = side
+            .iter()
+            .filter(|&&x| self.beta(x, 2) != self.beta(x, 3))
+            .map(|&x| (self.beta(x, 2).unwrap(), self.beta(self.beta(x, 3).unwrap(), 2).unwrap()))
+            .collect();
         for &x in &both {
             self.delete_dart(x);
         }
@@ -59,7 +64,9 @@ impl CMap3 {
 
     /// Removes the edge of `d` when exactly two faces meet there (in each volume along
     /// it), merging them into one face: the diagonal of a quadrilateral split in two
-    /// triangles, between two volumes or on the boundary.
+    /// triangles, between two volumes or on the boundary. A dangling edge (both sides in
+    /// one face, one end met by no other edge: what is left of an inner vertex when the
+    /// faces around it are merged one edge at a time) is removed with that end.
     ///
     /// ```
     /// use qmesh::build::{BuildOptions, CellKind, IndexedMesh, build_volume_map};
@@ -96,11 +103,15 @@ impl CMap3 {
             (Some(x), Some(y)) if self.beta(x, 2) == Some(y) => vec![(d, e), (x, y)],
             _ => return Err(MapError::EdgeNotRemovable(d)),
         };
+        let dangling = |m: &CMap3, x: Dart, y: Dart| m.next(x) == y || m.next(y) == x;
         for &(x, y) in &pairs {
-            if self.next(x) == y
-                || self.next(y) == x
-                || self.with_scratch(|m, w| w.collect(m, x, Orbit::HalfFace).contains(&y))
-            {
+            let removable = if dangling(self, x, y) {
+                // Not an edge that is a whole face by itself.
+                !(self.next(x) == y && self.next(y) == x)
+            } else {
+                !self.with_scratch(|m, w| w.collect(m, x, Orbit::HalfFace).contains(&y))
+            };
+            if !removable || dangling(self, x, y) != dangling(self, pairs[0].0, pairs[0].1) {
                 return Err(MapError::EdgeNotRemovable(d));
             }
         }
@@ -108,8 +119,14 @@ impl CMap3 {
             let (px, nx, py, ny) = (self.prev(x), self.next(x), self.prev(y), self.next(y));
             self.delete_dart(x);
             self.delete_dart(y);
-            self.link(px, 1, ny);
-            self.link(py, 1, nx);
+            if nx == y {
+                self.link(px, 1, ny);
+            } else if ny == x {
+                self.link(py, 1, nx);
+            } else {
+                self.link(px, 1, ny);
+                self.link(py, 1, nx);
+            }
         }
         Ok(())
     }

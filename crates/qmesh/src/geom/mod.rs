@@ -47,3 +47,20 @@ pub fn centroid(points: impl IntoIterator<Item = [f64; 3]>) -> [f64; 3] {
 #[cfg(test)]
 pub(crate) const UNIT_CUBE: [[f64; 3]; 8] =
     [[0., 0., 0.], [1., 0., 0.], [1., 1., 0.], [0., 1., 0.], [0., 0., 1.], [1., 0., 1.], [1., 1., 1.], [0., 1., 1.]];
+
+/// Newell's normal of the face of `d` (twice its vector area; it points the way the
+/// face runs counter-clockwise).
+pub fn face_normal(map: &crate::cmap::CMap3, d: crate::cmap::Dart) -> [f64; 3] {
+    let mut n = [0.0; 3];
+    let mut x = d;
+    loop {
+        let (p, q) = (map.point(x), map.point(map.next(x)));
+        n[0] += (p[1] - q[1]) * (p[2] + q[2]);
+        n[1] += (p[2] - q[2]) * (p[0] + q[0]);
+        n[2] += (p[0] - q[0]) * (p[1] + q[1]);
+        x = map.next(x);
+        if x == d {
+            return n;
+        }
+    }
+}

@@ -6,7 +6,7 @@
 use std::io::Write;
 use std::path::Path;
 
-use super::error::{IoError, IoResult};
+use super::error::{IoError, IoResult, Location};
 use super::lexer::{Lexer, clip};
 use crate::build::{CellKind, CellValues, IndexedMesh};
 
@@ -187,7 +187,7 @@ impl<'a> Reader<'a> {
     }
 
     /// Cell connectivity as (offsets, flat ids), legacy or 5.x layout.
-    fn cells(&mut self, np: usize) -> IoResult<CellList> {
+    fn cells(&mut self) -> IoResult<CellList> {
         let n = self.lx.count("cells", 2)?;
         let size: i64 = self.lx.parse("the size of the cell list")?;
         let size = self.lx.check_count(size, "cell list entries", if self.binary { 4 } else { 2 })?;
@@ -213,7 +213,7 @@ impl<'a> Reader<'a> {
             return Ok(CellList { offsets: offs, conn, lines: Vec::new() });
         }
         if !self.binary {
-            return self.ascii_cells(n, size, np);
+            return self.ascii_cells(n, size);
         }
         let flat = self.integers(size, "int", 4, "cell list entries")?;
         let mut offs = Vec::with_capacity(n + 1);
@@ -240,7 +240,7 @@ impl<'a> Reader<'a> {
 
 impl Reader<'_> {
     /// ASCII `CELLS n size` list, cell by cell, so that an error names its line.
-    fn ascii_cells(&mut self, n: usize, size: usize, np: usize) -> IoResult<CellList> {
+    fn ascii_cells(&mut self, n: usize, size: usize) -> IoResult<CellList> {
         let mut lines = Vec::with_capacity(n);
         let mut offs = Vec::with_capacity(n + 1);
         let mut conn = Vec::with_capacity(size.saturating_sub(n));
@@ -253,11 +253,11 @@ impl Reader<'_> {
                 return Err(self.lx.err(format!("cell {c} declares {m} nodes, beyond the declared list size {size}")));
             }
             for _ in 0..m {
+                // Indices are checked against the points once the cell's type is known
+                // (a polyhedron's list also holds face sizes), at this cell's line.
                 let v = self.lx.int("a point index")?;
-                if v < 0 || v as usize >= np {
-                    return Err(self
-                        .lx
-                        .err(format!("cell {c}: point index {v} is out of range (the file has {np} points)")));
+                if v < 0 {
+                    return Err(self.lx.err(format!("cell {c}: point index {v} is out of range (negative)")));
                 }
                 conn.push(v);
             }
@@ -312,15 +312,15 @@ pub fn read(path: &Path, data: &[u8]) -> IoResult<IndexedMesh> {
                 let v = r.numbers(n * 3, t, s, "point coordinates")?;
                 points = v.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
             }
-            "CELLS" => cells = Some(r.cells(points.len())?),
+            "CELLS" => cells = Some(r.cells()?),
             "POLYGONS" | "TRIANGLE_STRIPS" => {
-                let c = r.cells(points.len())?;
+                let c = r.cells()?;
                 if kw == "POLYGONS" {
                     polys.push(c);
                 }
             }
             "VERTICES" | "LINES" => {
-                r.cells(points.len())?;
+                r.cells()?;
             }
             "CELL_TYPES" => {
                 let n = r.lx.count("cell types", if r.binary { 4 } else { 2 })?;
@@ -368,9 +368,16 @@ pub(super) fn assemble(
     let mut mesh = IndexedMesh::new();
     let np = points.len();
     mesh.points = points;
+    let cell_lines = cells.as_ref().map_or(&[][..], |l| &l.lines[..]);
     let idx = |v: i64, c: usize| -> IoResult<u32> {
         if v < 0 || v as usize >= np {
-            Err(err(format!("cell {c}: point index {v} is out of range (the file has {np} points)")))
+            let e = err(format!("cell {c}: point index {v} is out of range (the file has {np} points)"));
+            Err(match (e, cell_lines.get(c)) {
+                (IoError::Parse { path, msg, .. }, Some(&line)) => {
+                    IoError::Parse { path, at: Location::Line(line as usize), msg }
+                }
+                (e, _) => e,
+            })
         } else {
             Ok(v as u32)
         }

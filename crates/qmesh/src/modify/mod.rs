@@ -6,6 +6,7 @@
 //! by matching one in the other, [`correspondence`]); [`execute`] then rewires each
 //! selected match. Every operation leaves a valid map.
 
+mod apply;
 pub mod correspondence;
 mod error;
 mod execute;
@@ -15,6 +16,7 @@ mod rule;
 mod rule_file;
 mod volume_pattern;
 
+pub use apply::{BUILTIN_APPLY, builtin_apply, flatten_top, merge_volumes};
 pub use error::ModifyError;
 pub use execute::{Executed, execute};
 pub use face_pattern::FacePattern;

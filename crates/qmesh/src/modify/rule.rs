@@ -8,7 +8,7 @@ use std::time::Instant;
 use super::execute::{Executed, execute};
 use super::plan::Plan;
 use crate::cmap::{CMap3, Dart, MapError};
-use crate::query::{MatchOptions, Metric, Query, QuerySet, Strategy, find_matches, select};
+use crate::query::{MatchOptions, Metric, Query, QuerySet, Separation, Strategy, find_matches, select_separated};
 
 /// A query-apply function (2025 §6.4): receives the map and one match (query label k
 /// at `matched[k - 1]`) and may use any map operation (`remove_face` to merge
@@ -53,6 +53,8 @@ pub struct Rule {
     pub metric: Option<Metric>,
     /// At most this many matches are modified.
     pub max: Option<usize>,
+    /// What two selected matches may not share.
+    pub separation: Separation,
 }
 
 impl Rule {
@@ -65,6 +67,7 @@ impl Rule {
             strategy: Strategy::Greedy,
             metric: None,
             max: None,
+            separation: Separation::Darts,
         }
     }
 }
@@ -126,7 +129,7 @@ fn run_rule(map: &mut CMap3, rule: &Rule) -> RuleReport {
     let set = QuerySet::new(vec![rule.query.clone()]);
     let metric = if rule.strategy == Strategy::Best { rule.metric.as_ref() } else { None };
     let found = find_matches(map, &set, &MatchOptions { metric, ..Default::default() });
-    let chosen = select(map, &set, &found.matches, rule.strategy, rule.max);
+    let chosen = select_separated(map, &set, &found.matches, rule.strategy, rule.max, rule.separation);
     let query_seconds = t.elapsed().as_secs_f64();
     let t = Instant::now();
     let mut r = RuleReport {

@@ -4,14 +4,16 @@
 //! ```toml
 //! [[rule]]
 //! name = "roof"            # optional, defaults to the query file's stem
-//! op = "extend"            # query | extend | delete | replace
+//! op = "extend"            # query | extend | delete | replace | apply
 //! query = "block.mesh"     # paths are relative to the rule file
 //! target = "block_roof.mesh"
+//! # apply = "flatten-top"  # for op = "apply": a built-in operation (merge, flatten-top)
 //! boundary = "*"           # condition of the query's 3-free darts: * | eps | interior | no-connection
 //! faces = { 7 = "eps" }    # per-face overrides: Medit reference of a boundary face → condition
 //! strategy = "greedy"      # greedy | best | random
 //! metric = "hex-quality"   # for best: hex-quality | volume
 //! max = 50                 # modify at most this many matches
+//! separation = "darts"     # what two selected matches may not share: darts | vertices
 //! seed = 1                 # for random
 //! orientation = "geometric" # of automorphic matches: the image fitting the query's
 //!                           # shape and orientation best (default: smallest start dart)
@@ -25,10 +27,11 @@ use std::path::{Path, PathBuf};
 use serde::Deserialize;
 use toml::Spanned;
 
+use super::apply::{BUILTIN_APPLY, builtin_apply};
 use super::plan::{Operation, Plan};
 use super::rule::{Action, Rule};
 use crate::pattern::read_small_map;
-use crate::query::{Condition, Metric, Query, Strategy};
+use crate::query::{Condition, Metric, Query, Separation, Strategy};
 
 /// A rule file that cannot be used: the file, the line, the key, and why.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -53,11 +56,13 @@ struct RawRule {
     op: Spanned<String>,
     query: Spanned<String>,
     target: Option<Spanned<String>>,
+    apply: Option<Spanned<String>>,
     boundary: Option<Spanned<String>>,
     faces: Option<Spanned<BTreeMap<String, Spanned<String>>>>,
     strategy: Option<Spanned<String>>,
     metric: Option<Spanned<String>>,
     max: Option<usize>,
+    separation: Option<Spanned<String>>,
     seed: Option<u64>,
     orientation: Option<Spanned<String>>,
     max_residual: Option<f64>,
@@ -105,11 +110,26 @@ pub fn parse_rules(path: &Path, text: &str) -> Result<Vec<Rule>, RuleError> {
         let r = spanned.into_inner();
         let value = |s: &Spanned<String>, key: &str, what: &str| err(s.span().start, Some(key), what.to_string());
         let op = match r.op.get_ref().as_str() {
-            "query" | "find" => None,
+            "query" | "find" | "apply" => None,
             s => Some(Operation::parse(s).ok_or_else(|| {
-                value(&r.op, "op", &format!("unknown operation '{s}' (query, extend, delete, replace)"))
+                value(&r.op, "op", &format!("unknown operation '{s}' (query, extend, delete, replace, apply)"))
             })?),
         };
+        let apply = match (r.op.get_ref().as_str(), &r.apply) {
+            ("apply", None) => {
+                let list = BUILTIN_APPLY.join(", ");
+                return Err(err(at, Some("apply"), format!("op = \"apply\" needs `apply = \"…\"` ({list})")));
+            }
+            ("apply", Some(name)) => Some(builtin_apply(name.get_ref()).ok_or_else(|| {
+                let list = BUILTIN_APPLY.join(", ");
+                value(name, "apply", &format!("unknown apply operation '{}' ({list})", name.get_ref()))
+            })?),
+            (_, Some(name)) => return Err(value(name, "apply", "only op = \"apply\" takes an apply operation")),
+            (_, None) => None,
+        };
+        if let (Some(_), Some(t)) = (&apply, &r.target) {
+            return Err(value(t, "target", "op = \"apply\" takes no target: the operation is the modification"));
+        }
         let condition = |s: &Spanned<String>, key: &str| {
             Condition::parse(s.get_ref()).ok_or_else(|| {
                 value(
@@ -162,6 +182,7 @@ pub fn parse_rules(path: &Path, text: &str) -> Result<Vec<Rule>, RuleError> {
         }
         query.max_residual = r.max_residual;
         let action = match op {
+            None if apply.is_some() => Action::Apply(apply.expect("checked")),
             None => Action::Find,
             Some(op) => {
                 let t = r
@@ -195,7 +216,13 @@ pub fn parse_rules(path: &Path, text: &str) -> Result<Vec<Rule>, RuleError> {
         if matches!(metric, Some(Metric::HexQuality)) && query.corners.is_none() {
             return Err(value(&r.query, "metric", "hex-quality needs a query whose shape spans a hexahedron"));
         }
-        rules.push(Rule { name, query, action, strategy, metric, max: r.max });
+        let separation = match &r.separation {
+            None => Separation::Darts,
+            Some(s) => Separation::parse(s.get_ref()).ok_or_else(|| {
+                value(s, "separation", &format!("unknown separation '{}' (darts, vertices)", s.get_ref()))
+            })?,
+        };
+        rules.push(Rule { name, query, action, strategy, metric, max: r.max, separation });
     }
     Ok(rules)
 }

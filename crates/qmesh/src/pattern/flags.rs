@@ -2,7 +2,7 @@
 //! boundary darts are flagged, computed from the geometry.
 
 use crate::cmap::{CMap3, Dart, Mark};
-use crate::geom::{cross, dot, sub};
+use crate::geom::{cross, dot, face_normal, sub};
 use crate::signature::{Surface, pattern_face_boundary};
 
 /// How pattern flags are set.
@@ -32,22 +32,6 @@ fn norm(a: [f64; 3]) -> f64 {
 fn not_parallel(a: [f64; 3], b: [f64; 3]) -> bool {
     let (na, nb) = (norm(a), norm(b));
     na > 0.0 && nb > 0.0 && (norm(cross(a, b)) > SIN_TOL * na * nb || dot(a, b) < 0.0)
-}
-
-/// Newell normal of the face of `d`.
-fn face_normal(map: &CMap3, d: Dart) -> [f64; 3] {
-    let mut n = [0.0; 3];
-    let mut x = d;
-    loop {
-        let (p, q) = (map.point(x), map.point(map.next(x)));
-        n[0] += (p[1] - q[1]) * (p[2] + q[2]);
-        n[1] += (p[2] - q[2]) * (p[0] + q[0]);
-        n[2] += (p[0] - q[0]) * (p[1] + q[1]);
-        x = map.next(x);
-        if x == d {
-            return n;
-        }
-    }
 }
 
 /// Flags with `mark` the boundary darts that start at a geometric corner of the

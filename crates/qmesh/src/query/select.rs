@@ -40,6 +40,28 @@ impl Strategy {
     }
 }
 
+/// What two selected matches may not share.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Separation {
+    /// A dart (2025 §5.2.2: matches do not overlap).
+    #[default]
+    Darts,
+    /// A vertex: no two selected matches touch, so an edit that moves a match's
+    /// vertices (flatten-top) cannot undo another's.
+    Vertices,
+}
+
+impl Separation {
+    /// Reads `darts` or `vertices`.
+    pub fn parse(s: &str) -> Option<Separation> {
+        match s {
+            "darts" => Some(Separation::Darts),
+            "vertices" => Some(Separation::Vertices),
+            _ => None,
+        }
+    }
+}
+
 /// A selected match with its input darts in query label order.
 #[derive(Clone, Debug)]
 pub struct Selected {
@@ -58,6 +80,18 @@ pub fn select(
     strategy: Strategy,
     max: Option<usize>,
 ) -> Vec<Selected> {
+    select_separated(map, set, candidates, strategy, max, Separation::Darts)
+}
+
+/// As [`select`], with matches kept apart by `separation`.
+pub fn select_separated(
+    map: &CMap3,
+    set: &QuerySet,
+    candidates: &[Match],
+    strategy: Strategy,
+    max: Option<usize>,
+    separation: Separation,
+) -> Vec<Selected> {
     let mut order: Vec<usize> = (0..candidates.len()).collect();
     match strategy {
         Strategy::Greedy => {}
@@ -65,6 +99,7 @@ pub fn select(
         Strategy::Random(seed) => shuffle(&mut order, seed),
     }
     let mut used = BitSet::with_len(map.dart_capacity());
+    let mut touched = BitSet::with_len(if separation == Separation::Vertices { map.positions().len() } else { 0 });
     let mut annot = set.annotator();
     let mut out = Vec::new();
     for i in order {
@@ -78,6 +113,14 @@ pub fn select(
         let darts = set.darts_of(map, &m, &mut annot);
         if darts.iter().any(|d| used.get(d.idx())) {
             continue;
+        }
+        if separation == Separation::Vertices {
+            if darts.iter().any(|&d| touched.get(map.vertex_of(d) as usize)) {
+                continue;
+            }
+            for &d in &darts {
+                touched.insert(map.vertex_of(d) as usize);
+            }
         }
         for d in &darts {
             used.insert(d.idx());

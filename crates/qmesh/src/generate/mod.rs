@@ -1,4 +1,9 @@
-//! Built-in inputs: structured hexahedral grids and their tetrahedral splits.
+//! Built-in inputs: structured hexahedral grids and their tetrahedral splits, a torus
+//! surface, and voxel terrains.
+
+mod terrain;
+
+pub use terrain::{TerrainOptions, height_map, terrain};
 
 use crate::build::{CellKind, IndexedMesh};
 
