@@ -424,7 +424,8 @@ fn terrain_example_runs_the_papers_two_steps_from_its_rule_files() {
     let flatten = rules("flatten.toml");
     let j = json_of(&["modify", t.to_str().unwrap(), spots.to_str().unwrap(), "--rules", &flatten, "--json"]);
     let r = &j["rules"][0];
-    assert_eq!((r["op"].as_str(), r["matches"].as_u64()), (Some("apply"), Some(14 * 14)));
+    assert_eq!(r["op"].as_str(), Some("apply"));
+    assert!(r["starts_tested"].as_u64().is_some_and(|n| n > 0 && n <= 256 * 26), "{r}");
     let spots_made = r["modified"].as_u64().unwrap();
     assert!(spots_made >= 5, "only {spots_made} spots on 16×16 voxels");
     assert_eq!(j["volumes"].as_u64(), Some(256 - 8 * spots_made));

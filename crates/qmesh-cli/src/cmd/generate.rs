@@ -5,8 +5,7 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 use anyhow::Result;
-use qmesh::build::{BuildOptions, build_volume_map};
-use qmesh::generate::{TerrainOptions, hex_grid, terrain, tet_grid};
+use qmesh::generate::{TerrainOptions, hex_grid, terrain, terrain_map, tet_grid};
 use qmesh::io::{Format, WriteOptions, resolve_format, write_indexed};
 use serde_json::json;
 
@@ -63,6 +62,9 @@ pub fn parse_size(s: &str) -> Result<[usize; 3]> {
 
 pub fn run(a: Args) -> Result<ExitCode> {
     let t = Instant::now();
+    // A terrain's map is made directly (2025 Table 2, step 1, counts its darts), checked
+    // before writing; grids are written as they are.
+    let mut built = None;
     let mesh = match a.kind {
         Kind::Grid | Kind::TetGrid => {
             let [x, y, z] = parse_size(&a.size)?;
@@ -78,21 +80,17 @@ pub fn run(a: Args) -> Result<ExitCode> {
             );
             anyhow::ensure!(a.relief >= 0.0 && a.relief.is_finite(), "--relief must be 0 or more, got {}", a.relief);
             anyhow::ensure!(a.base > 0.0 && a.base.is_finite(), "--base must be above 0, got {}", a.base);
-            terrain(&TerrainOptions { nx, ny, seed: a.seed, roughness: a.roughness, relief: a.relief, base: a.base })
+            let o = TerrainOptions { nx, ny, seed: a.seed, roughness: a.roughness, relief: a.relief, base: a.base };
+            let map = terrain_map(&o);
+            let seconds = t.elapsed().as_secs_f64();
+            if let Some(v) = map.is_valid().first() {
+                anyhow::bail!("the generated map is not valid ({v}); nothing written");
+            }
+            built = Some((map.count_cells(), seconds));
+            terrain(&o)
         }
     };
-    let generate_seconds = t.elapsed().as_secs_f64();
-    // A terrain's map (2025 Table 2 counts its darts), checked before writing; grids
-    // are written as they are.
-    let mut built = None;
-    if a.kind == Kind::Terrain {
-        let t = Instant::now();
-        let (map, _) = build_volume_map(&mesh, &BuildOptions::default())?;
-        if let Some(v) = map.is_valid().first() {
-            anyhow::bail!("the generated map is not valid ({v}); nothing written");
-        }
-        built = Some((map.count_cells(), t.elapsed().as_secs_f64()));
-    }
+    let generate_seconds = built.as_ref().map_or_else(|| t.elapsed().as_secs_f64(), |b| b.1);
     let format: Format = resolve_format(&a.output, None)?;
     write_indexed(&a.output, &mesh, format, &WriteOptions { binary: a.binary })?;
     if a.report.json {
@@ -103,15 +101,12 @@ pub fn run(a: Args) -> Result<ExitCode> {
             "volumes": built.as_ref().map(|(c, _)| c.volumes),
             "darts": built.as_ref().map(|(c, _)| c.darts),
             "generate_seconds": generate_seconds,
-            "map_seconds": built.as_ref().map(|(_, s)| s),
         });
         println!("{}", serde_json::to_string_pretty(&j)?);
     } else if !a.report.quiet {
-        let map = built.map_or(String::new(), |(c, s)| {
-            format!("; map: {} volumes, {} darts, built in {s:.3} s", c.volumes, c.darts)
-        });
+        let map = built.map_or(String::new(), |(c, _)| format!("; map: {} volumes, {} darts", c.volumes, c.darts));
         println!(
-            "wrote {} ({} points, {} cells, generated in {generate_seconds:.3} s{map})",
+            "wrote {} ({} points, {} cells{map}; generated in {generate_seconds:.3} s)",
             a.output.display(),
             mesh.points.len(),
             mesh.nb_cells(),

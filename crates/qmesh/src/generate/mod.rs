@@ -3,7 +3,7 @@
 
 mod terrain;
 
-pub use terrain::{TerrainOptions, height_map, terrain};
+pub use terrain::{TerrainOptions, height_map, terrain, terrain_map};
 
 use crate::build::{CellKind, IndexedMesh};
 

@@ -8,7 +8,9 @@ use std::time::Instant;
 use super::execute::{Executed, execute};
 use super::plan::Plan;
 use crate::cmap::{CMap3, Dart, MapError};
-use crate::query::{MatchOptions, Metric, Query, QuerySet, Separation, Strategy, find_matches, select_separated};
+use crate::query::{
+    MatchOptions, Metric, Query, QuerySet, Separation, Strategy, find_matches, select_random_lazily, select_separated,
+};
 
 /// A query-apply function (2025 §6.4): receives the map and one match (query label k
 /// at `matched[k - 1]`) and may use any map operation (`remove_face` to merge
@@ -77,8 +79,12 @@ impl Rule {
 pub struct RuleReport {
     pub rule: String,
     pub op: &'static str,
-    /// Matches found (one per set of darts).
+    /// Matches found (one per set of darts): all of them, or, for a random selection
+    /// with a `max`, those found from the start darts tried until it had enough.
     pub matches: usize,
+    /// Start darts tried by a random selection with a `max` (it stops once it has
+    /// `max` matches); `None` when every dart was matched.
+    pub starts_tested: Option<usize>,
     /// Matches counting automorphic copies.
     pub matches_with_automorphisms: usize,
     pub automorphisms: usize,
@@ -128,15 +134,25 @@ fn run_rule(map: &mut CMap3, rule: &Rule) -> RuleReport {
     let t = Instant::now();
     let set = QuerySet::new(vec![rule.query.clone()]);
     let metric = if rule.strategy == Strategy::Best { rule.metric.as_ref() } else { None };
-    let found = find_matches(map, &set, &MatchOptions { metric, ..Default::default() });
-    let chosen = select_separated(map, &set, &found.matches, rule.strategy, rule.max, rule.separation);
+    let (chosen, matches, with_automorphisms, starts_tested) = match (rule.strategy, rule.max) {
+        (Strategy::Random(seed), Some(max)) => {
+            let (chosen, seen) = select_random_lazily(map, &set, &MatchOptions::default(), seed, max, rule.separation);
+            (chosen, seen.matches, seen.with_automorphisms, Some(seen.starts_tested))
+        }
+        _ => {
+            let found = find_matches(map, &set, &MatchOptions { metric, ..Default::default() });
+            let chosen = select_separated(map, &set, &found.matches, rule.strategy, rule.max, rule.separation);
+            (chosen, found.per_query[0], found.with_automorphisms[0], None)
+        }
+    };
     let query_seconds = t.elapsed().as_secs_f64();
     let t = Instant::now();
     let mut r = RuleReport {
         rule: rule.name.clone(),
         op: rule.action.name(),
-        matches: found.per_query[0],
-        matches_with_automorphisms: found.with_automorphisms[0],
+        matches,
+        matches_with_automorphisms: with_automorphisms,
+        starts_tested,
         automorphisms: rule.query.automorphisms.count(),
         selected: chosen.len(),
         query_seconds,

@@ -117,37 +117,7 @@ pub fn find_matches(map: &CMap3, set: &QuerySet, opts: &MatchOptions<'_>) -> Mat
                 let before = annot.steps;
                 for s in (c * CHUNK).max(1)..((c + 1) * CHUNK).min(n) {
                     let Some(start) = Dart::from_raw(s as u32).filter(|&d| map.is_live(d)) else { continue };
-                    let prune = (!opts.all_automorphisms).then_some(set.prune.as_slice());
-                    let guard = opts.min_hex_quality.map(|t| (&set.guards, t));
-                    set.tree.walk(map, annot, s as u32, opts.consumed, prune, guard, |q, a| {
-                        let query = &set.queries[q as usize];
-                        if let Some(t) = opts.min_hex_quality
-                            && query.matched_hex_quality(map, a.matched_raw()).is_some_and(|j| j <= t)
-                        {
-                            return;
-                        }
-                        if opts.all_automorphisms || query.automorphisms.is_canonical(map, &query.word, a) {
-                            let mut start = start;
-                            if let Some(fit) =
-                                query.fit.as_ref().filter(|_| query.orient_by_geometry || query.max_residual.is_some())
-                            {
-                                let (s, residual) = query.automorphisms.best_image(map, &query.word, fit, a);
-                                if query.max_residual.is_some_and(|limit| residual > limit) {
-                                    return;
-                                }
-                                if query.orient_by_geometry && !opts.all_automorphisms {
-                                    start = Dart::from_raw(s).expect("matched darts are not ε");
-                                }
-                            }
-                            all[q as usize] += if opts.all_automorphisms {
-                                1
-                            } else {
-                                query.automorphisms.valid_images(map, &query.word, a)
-                            };
-                            let score = opts.metric.map_or(0.0, |m| m.evaluate(map, query, a.matched_raw()));
-                            out.push(Match { query: q, start, score });
-                        }
-                    });
+                    matches_at(map, set, opts, annot, start, &mut out, &mut all);
                 }
                 (out, all, annot.steps - before)
             },
@@ -171,4 +141,44 @@ pub fn find_matches(map: &CMap3, set: &QuerySet, opts: &MatchOptions<'_>) -> Mat
     }
     r.seconds = t.elapsed().as_secs_f64();
     r
+}
+
+/// The matches of every query of `set` whose label 1 is at `start` (after the filters
+/// of `opts`: automorphic copies, hexahedron quality, geometric fit), appended to
+/// `out`; `all[q]` counts query q's matches with their automorphic copies.
+pub(crate) fn matches_at(
+    map: &CMap3,
+    set: &QuerySet,
+    opts: &MatchOptions<'_>,
+    annot: &mut Annotator,
+    start: Dart,
+    out: &mut Vec<Match>,
+    all: &mut [usize],
+) {
+    let prune = (!opts.all_automorphisms).then_some(set.prune.as_slice());
+    let guard = opts.min_hex_quality.map(|t| (&set.guards, t));
+    set.tree.walk(map, annot, start.raw(), opts.consumed, prune, guard, |q, a| {
+        let query = &set.queries[q as usize];
+        if let Some(t) = opts.min_hex_quality
+            && query.matched_hex_quality(map, a.matched_raw()).is_some_and(|j| j <= t)
+        {
+            return;
+        }
+        if opts.all_automorphisms || query.automorphisms.is_canonical(map, &query.word, a) {
+            let mut start = start;
+            if let Some(fit) = query.fit.as_ref().filter(|_| query.orient_by_geometry || query.max_residual.is_some()) {
+                let (s, residual) = query.automorphisms.best_image(map, &query.word, fit, a);
+                if query.max_residual.is_some_and(|limit| residual > limit) {
+                    return;
+                }
+                if query.orient_by_geometry && !opts.all_automorphisms {
+                    start = Dart::from_raw(s).expect("matched darts are not ε");
+                }
+            }
+            all[q as usize] +=
+                if opts.all_automorphisms { 1 } else { query.automorphisms.valid_images(map, &query.word, a) };
+            let score = opts.metric.map_or(0.0, |m| m.evaluate(map, query, a.matched_raw()));
+            out.push(Match { query: q, start, score });
+        }
+    });
 }

@@ -39,7 +39,7 @@ pub use error::QueryError;
 pub use matcher::{Match, MatchOptions, MatchReport, QuerySet, find_matches};
 pub use metric::{Metric, MetricFn};
 pub use query_map::Query;
-pub use select::{Selected, Separation, Strategy, select, select_separated};
+pub use select::{LazySearch, Selected, Separation, Strategy, select, select_random_lazily, select_separated};
 pub use trie::PrefixTree;
 pub use word::{Condition, Labelling, QueryWord};
 

@@ -6,7 +6,8 @@
 //! the next start dart): a candidate found without that constraint is rejected by it
 //! exactly when it shares a dart with a selected match.
 
-use super::matcher::{Match, QuerySet};
+use super::annotate::Annotator;
+use super::matcher::{Match, MatchOptions, QuerySet, matches_at};
 use crate::cmap::{BitSet, CMap3, Dart};
 
 /// In which order candidates are taken.
@@ -98,36 +99,135 @@ pub fn select_separated(
         Strategy::Best => order.sort_by(|&a, &b| candidates[b].score.total_cmp(&candidates[a].score)),
         Strategy::Random(seed) => shuffle(&mut order, seed),
     }
-    let mut used = BitSet::with_len(map.dart_capacity());
-    let mut touched = BitSet::with_len(if separation == Separation::Vertices { map.positions().len() } else { 0 });
+    let mut taken = Taken::new(map, separation);
     let mut annot = set.annotator();
     let mut out = Vec::new();
     for i in order {
         if max.is_some_and(|m| out.len() >= m) {
             break;
         }
-        let m = candidates[i];
-        if used.get(m.start.idx()) {
+        out.extend(taken.take(map, set, candidates[i], &mut annot));
+    }
+    out
+}
+
+/// What [`select_random_lazily`] looked at.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct LazySearch {
+    /// Start darts matched.
+    pub starts_tested: usize,
+    /// Matches found from them (one per set of darts).
+    pub matches: usize,
+    /// The same counting automorphic copies.
+    pub with_automorphisms: usize,
+}
+
+/// `Strategy::Random` with a `max`, without finding every match first: start darts
+/// are drawn in a seeded random order (a lazily drawn Fisher–Yates permutation of the
+/// darts) and matched one by one, the darts already taken counting as ∅, until `max`
+/// matches are taken or every dart was tried. On a large map where a few matches are
+/// wanted (the 50 spots of 2025 §7.4) it looks at a few hundred darts instead of all.
+pub fn select_random_lazily(
+    map: &CMap3,
+    set: &QuerySet,
+    opts: &MatchOptions<'_>,
+    seed: u64,
+    max: usize,
+    separation: Separation,
+) -> (Vec<Selected>, LazySearch) {
+    let mut taken = Taken::new(map, separation);
+    let mut annot = set.annotator();
+    let mut order = LazyPermutation::new(map.dart_capacity(), seed);
+    let (mut found, mut all) = (Vec::new(), vec![0usize; set.queries.len()]);
+    let mut out = Vec::new();
+    let mut stats = LazySearch::default();
+    while out.len() < max {
+        let Some(raw) = order.next() else { break };
+        let Some(start) = Dart::from_raw(raw as u32).filter(|&d| map.is_live(d) && !taken.used.get(d.idx())) else {
             continue;
+        };
+        stats.starts_tested += 1;
+        found.clear();
+        let consumed = MatchOptions { consumed: Some(&taken.used), ..*opts };
+        matches_at(map, set, &consumed, &mut annot, start, &mut found, &mut all);
+        stats.matches += found.len();
+        for &m in &found {
+            if out.len() < max {
+                out.extend(taken.take(map, set, m, &mut annot));
+            }
         }
-        let darts = set.darts_of(map, &m, &mut annot);
-        if darts.iter().any(|d| used.get(d.idx())) {
-            continue;
+    }
+    stats.with_automorphisms = all.iter().sum();
+    (out, stats)
+}
+
+/// The darts (and vertices) of the matches selected so far.
+struct Taken {
+    used: BitSet,
+    touched: BitSet,
+    separation: Separation,
+}
+
+impl Taken {
+    fn new(map: &CMap3, separation: Separation) -> Taken {
+        let vertices = if separation == Separation::Vertices { map.positions().len() } else { 0 };
+        Taken { used: BitSet::with_len(map.dart_capacity()), touched: BitSet::with_len(vertices), separation }
+    }
+
+    /// Takes `m` unless it shares a dart (or a vertex) with a match taken before.
+    fn take(&mut self, map: &CMap3, set: &QuerySet, m: Match, annot: &mut Annotator) -> Option<Selected> {
+        if self.used.get(m.start.idx()) {
+            return None;
         }
-        if separation == Separation::Vertices {
-            if darts.iter().any(|&d| touched.get(map.vertex_of(d) as usize)) {
-                continue;
+        let darts = set.darts_of(map, &m, annot);
+        if darts.iter().any(|d| self.used.get(d.idx())) {
+            return None;
+        }
+        if self.separation == Separation::Vertices {
+            if darts.iter().any(|&d| self.touched.get(map.vertex_of(d) as usize)) {
+                return None;
             }
             for &d in &darts {
-                touched.insert(map.vertex_of(d) as usize);
+                self.touched.insert(map.vertex_of(d) as usize);
             }
         }
         for d in &darts {
-            used.insert(d.idx());
+            self.used.insert(d.idx());
         }
-        out.push(Selected { m, darts });
+        Some(Selected { m, darts })
     }
-    out
+}
+
+/// 0..n in a uniformly random order drawn as it is read: Fisher–Yates on a virtual
+/// array whose swapped entries alone are stored.
+struct LazyPermutation {
+    n: usize,
+    i: usize,
+    swapped: rustc_hash::FxHashMap<usize, usize>,
+    rng: crate::random::SplitMix64,
+}
+
+impl LazyPermutation {
+    fn new(n: usize, seed: u64) -> LazyPermutation {
+        LazyPermutation { n, i: 0, swapped: Default::default(), rng: crate::random::SplitMix64(seed) }
+    }
+}
+
+impl Iterator for LazyPermutation {
+    type Item = usize;
+
+    fn next(&mut self) -> Option<usize> {
+        if self.i >= self.n {
+            return None;
+        }
+        let (i, j) = (self.i, self.i + self.rng.below(self.n - self.i));
+        let at = |k: usize, m: &rustc_hash::FxHashMap<usize, usize>| m.get(&k).copied().unwrap_or(k);
+        let (a, b) = (at(j, &self.swapped), at(i, &self.swapped));
+        self.swapped.insert(j, b);
+        self.swapped.remove(&i);
+        self.i += 1;
+        Some(a)
+    }
 }
 
 /// Fisher–Yates with SplitMix64: the same order for the same seed on every platform.

@@ -318,3 +318,33 @@ fn residual_threshold_rejects_distorted_copies_and_orientation_follows_the_query
         assert!((p[1] - first[1]).abs() < 1e-12 && (p[2] - first[2]).abs() < 1e-12, "{p:?} vs {first:?}");
     }
 }
+
+#[test]
+fn lazy_random_selection_is_seeded_separated_and_stops_at_max() {
+    use qmesh::query::{Separation, select_random_lazily};
+    let g = build_volume_map(&qmesh::generate::hex_grid(8, 8, 1), &BuildOptions::default()).unwrap().0;
+    let pair = build_volume_map(&qmesh::generate::hex_grid(2, 1, 1), &BuildOptions::default()).unwrap().0;
+    let set = QuerySet::new(vec![Query::new("pair", pair, |_| Condition::Any).unwrap()]);
+    let opts = MatchOptions::default();
+    let starts = |s: &[qmesh::query::Selected]| s.iter().map(|x| x.m.start).collect::<Vec<_>>();
+    let (a, seen) = select_random_lazily(&g, &set, &opts, 5, 6, Separation::Darts);
+    let (b, _) = select_random_lazily(&g, &set, &opts, 5, 6, Separation::Darts);
+    let (c, _) = select_random_lazily(&g, &set, &opts, 6, 6, Separation::Darts);
+    assert_eq!((a.len(), starts(&a)), (6, starts(&b)), "same seed, same choice");
+    assert_ne!(starts(&a), starts(&c), "another seed, another choice");
+    assert!(seen.starts_tested < g.nb_darts() && seen.matches >= 6, "{seen:?}");
+    // No two share a dart; with vertex separation no two share a vertex either, and
+    // asking for more than fit takes what fits (every dart is tried).
+    let (all, seen) = select_random_lazily(&g, &set, &opts, 5, 1000, Separation::Vertices);
+    assert!(seen.starts_tested > g.nb_darts() / 2, "{seen:?}");
+    let mut vertices = std::collections::HashSet::new();
+    for s in &all {
+        let mine: std::collections::HashSet<u32> = s.darts.iter().map(|&d| g.vertex_of(d)).collect();
+        assert!(mine.iter().all(|v| !vertices.contains(v)), "two selected pairs touch");
+        vertices.extend(mine);
+    }
+    // 8×8 cells: pairs that do not touch fit at most ⌈8/3⌉ per row of every other row.
+    assert!(!all.is_empty() && all.len() <= 12, "{}", all.len());
+    let (dense, _) = select_random_lazily(&g, &set, &opts, 5, 1000, Separation::Darts);
+    assert!(dense.len() > all.len() && dense.len() <= 32);
+}

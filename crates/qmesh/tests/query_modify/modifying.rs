@@ -141,7 +141,9 @@ fn rule_files_run_without_code() {
     let rules = load_rules(&dir.join("rules.toml")).unwrap();
     let mut m = grid(6, 1, 1);
     let r = run_rules(&mut m, &rules);
-    assert_eq!((r[0].rule.as_str(), r[0].matches, r[0].selected, r[0].volumes_after), ("halve", 5, 2, 4));
+    assert_eq!((r[0].rule.as_str(), r[0].selected, r[0].volumes_after), ("halve", 2, 4));
+    // Random with a max tries start darts until it has 2 (of the 5 pairs).
+    assert!((2..=5).contains(&r[0].matches) && r[0].starts_tested.is_some(), "{:?}", r[0]);
     assert!(r[0].valid);
 }
 

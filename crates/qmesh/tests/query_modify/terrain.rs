@@ -31,7 +31,9 @@ fn table_2_counts_from_the_example_rule_files() {
     let spots = load_rules(&example("flatten.toml")).unwrap();
     let r = &run_rules(&mut m, &spots)[0];
     assert!(r.valid, "{:?}", r.problem);
-    assert_eq!((r.matches, r.selected, r.modified), (126 * 126, 50, 50));
+    // A random selection with a max stops early: a few hundred start darts, not all.
+    assert_eq!((r.selected, r.modified), (50, 50));
+    assert!(r.matches >= 50 && r.starts_tested.is_some_and(|n| n < 10_000), "{:?}", (r.matches, r.starts_tested));
     assert_eq!((r.volumes_after, r.darts_after), (15_984, 419_984), "step 2");
     let tops = spot_tops(&m);
     assert_eq!(tops.len(), 50);
