@@ -197,3 +197,68 @@ fn one_sew_keeps_beta13_involution() {
     assert_valid(&m);
     assert_eq!(m.count_cells().vertices, 5);
 }
+
+/// Mutation testing (scripts/mutants.sh core) found these rejection paths untested.
+#[test]
+fn sew1_and_sew2_refuse_exactly_what_they_document() {
+    use qmesh::cmap::MapError;
+    let mut m = CMap3::new();
+    let v = m.add_vertex([0.0; 3]);
+    let d: Vec<qmesh::cmap::Dart> = (0..6).map(|_| m.create_dart(v)).collect();
+    // Both 3-free: sewn, and β0 is its inverse.
+    m.sew1(d[0], d[1]).unwrap();
+    assert_eq!((m.beta(d[0], 1), m.beta(d[1], 0)), (Some(d[1]), Some(d[0])));
+    // β1(d1) taken, β0(d2) free — and the other way round: each alone refuses.
+    assert!(matches!(m.sew1(d[0], d[2]), Err(MapError::NotSewable { i: 1, .. })));
+    assert!(matches!(m.sew1(d[2], d[1]), Err(MapError::NotSewable { i: 1, .. })));
+    // One of the two 3-sewn, the other not: refused.
+    m.link(d[2], 3, d[3]);
+    assert!(matches!(m.sew1(d[2], d[4]), Err(MapError::NotSewable { i: 1, .. })));
+    assert!(matches!(m.sew1(d[4], d[2]), Err(MapError::NotSewable { i: 1, .. })));
+    // Both 3-sewn but β3(d2) already 1-sewn: refused; when both images are free the
+    // images are 1-sewn the other way.
+    m.link(d[4], 3, d[5]);
+    m.link(d[5], 1, d[1]);
+    assert!(m.sew1(d[2], d[4]).is_err());
+    m.unlink(d[5], 1);
+    m.sew1(d[2], d[4]).unwrap();
+    assert_eq!(m.beta(d[5], 1), Some(d[3]));
+    // sew2: distinct and both 2-free, each condition on its own.
+    let mut m = CMap3::new();
+    let v = m.add_vertex([0.0; 3]);
+    let e: Vec<qmesh::cmap::Dart> = (0..3).map(|_| m.create_dart(v)).collect();
+    assert!(matches!(m.sew2(e[0], e[0]), Err(MapError::NotSewable { i: 2, .. })));
+    m.sew2(e[0], e[1]).unwrap();
+    assert!(matches!(m.sew2(e[0], e[2]), Err(MapError::NotSewable { i: 2, .. })));
+    assert!(matches!(m.sew2(e[2], e[1]), Err(MapError::NotSewable { i: 2, .. })));
+}
+
+#[test]
+fn is_sewable3_refuses_a_face_sewn_on_either_side() {
+    let mut m = CMap3::new();
+    let p: Vec<u32> = [[0., 0., 0.], [1., 0., 0.], [0., 1., 0.], [0., 0., 1.], [0., 0., -1.], [0., 0., 2.]]
+        .iter()
+        .map(|&x| m.add_vertex(x))
+        .collect();
+    let a = m.make_tetrahedron([p[0], p[1], p[2], p[3]]);
+    let b = m.make_tetrahedron([p[0], p[2], p[1], p[4]]);
+    let c = m.make_tetrahedron([p[0], p[2], p[1], p[5]]);
+    let (b, c) = (m.prev(b), m.prev(c));
+    assert!(m.is_sewable3(a, b));
+    m.sew3(a, b).unwrap();
+    // a is sewn, c is free: refused; c free and a sewn the other way round: refused.
+    assert!(!m.is_sewable3(a, c));
+    assert!(!m.is_sewable3(c, a));
+}
+
+#[test]
+fn cycle_automorphisms_count_the_rotations_keeping_the_flags() {
+    use qmesh::signature::cycle_automorphisms;
+    let (t, f) = (true, false);
+    assert_eq!(cycle_automorphisms(&[f, f, f, f]), 4);
+    assert_eq!(cycle_automorphisms(&[t, t, t]), 3);
+    assert_eq!(cycle_automorphisms(&[t, f, t, f]), 2);
+    assert_eq!(cycle_automorphisms(&[t, f, f, f]), 1);
+    assert_eq!(cycle_automorphisms(&[t, f, f, t, f, f]), 2);
+    assert_eq!(cycle_automorphisms(&[t, t, f, t, f, f]), 1);
+}
