@@ -262,3 +262,62 @@ fn cycle_automorphisms_count_the_rotations_keeping_the_flags() {
     assert_eq!(cycle_automorphisms(&[t, f, f, t, f, f]), 2);
     assert_eq!(cycle_automorphisms(&[t, t, f, t, f, f]), 1);
 }
+
+#[test]
+fn validity_names_the_violation_and_its_darts_in_maps_over_65536_darts() {
+    use qmesh::build::{BuildOptions, build_volume_map};
+    use qmesh::cmap::Violation;
+    // 30×30×4 hexahedra: 86,400 darts, two parallel chunks of local checks.
+    let (mut m, _) = build_volume_map(&qmesh::generate::hex_grid(30, 30, 4), &BuildOptions::default()).unwrap();
+    assert!(m.dart_capacity() > 70_000 && m.is_valid().is_empty());
+    let d = m.darts().find(|d| d.raw() > 70_000).unwrap();
+    let e = m.beta(d, 2).unwrap();
+    m.unlink(d, 2);
+    let (lo, hi) = (d.raw().min(e.raw()), d.raw().max(e.raw()));
+    assert_eq!(m.is_valid(), vec![Violation::Beta2Free { dart: lo }, Violation::Beta2Free { dart: hi }]);
+    assert_eq!(
+        Violation::Beta2Free { dart: lo }.to_string(),
+        format!("dart {lo}: β2 is free in a volume map (open volume)")
+    );
+}
+
+#[test]
+fn beta13_and_vertex_id_violations_are_reported_as_such() {
+    use qmesh::cmap::Violation;
+    let mut m = CMap3::new();
+    let p: Vec<u32> = [[0., 0., 0.], [1., 0., 0.], [0., 1., 0.], [0., 0., 1.], [0., 0., -1.]]
+        .iter()
+        .map(|&x| m.add_vertex(x))
+        .collect();
+    let a = m.make_tetrahedron([p[0], p[1], p[2], p[3]]);
+    let b = m.make_tetrahedron([p[0], p[2], p[1], p[4]]);
+    let b = m.prev(b);
+    m.sew3(a, b).unwrap();
+    assert!(m.is_valid().is_empty());
+    // β3 still an involution, but rotated by one around the face.
+    let (a1, b1) = (a, m.beta(a, 3).unwrap());
+    let (a2, b2) = (m.next(a), m.beta(m.next(a), 3).unwrap());
+    m.link(a1, 3, b2);
+    m.link(a2, 3, b1);
+    let v = m.is_valid();
+    assert!(v.iter().any(|x| matches!(x, Violation::Beta13NotInvolution { .. })), "{v:?}");
+    assert!(v.iter().any(|x| matches!(x, Violation::VertexIdMismatch { .. })), "{v:?}");
+    assert!(!v.iter().any(|x| matches!(x, Violation::NotInvolution { .. })), "{v:?}");
+}
+
+#[test]
+fn local_violations_are_not_hidden_by_a_shared_vertex_id() {
+    use qmesh::cmap::Violation;
+    // Two separate tetrahedra on the same 4 vertex ids: two orbits per id …
+    let mut m = CMap3::new();
+    let p: Vec<u32> =
+        [[0., 0., 0.], [1., 0., 0.], [0., 1., 0.], [0., 0., 1.]].iter().map(|&x| m.add_vertex(x)).collect();
+    m.make_tetrahedron([p[0], p[1], p[2], p[3]]);
+    let d = m.make_tetrahedron([p[0], p[1], p[2], p[3]]);
+    let shared = m.is_valid();
+    assert!(!shared.is_empty() && shared.iter().all(|x| matches!(x, Violation::VertexIdShared { .. })), "{shared:?}");
+    // … and an open volume: the local violations come first, alone.
+    m.unlink(d, 2);
+    let v = m.is_valid();
+    assert!(!v.is_empty() && v.iter().all(|x| matches!(x, Violation::Beta2Free { .. })), "{v:?}");
+}
