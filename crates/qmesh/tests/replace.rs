@@ -107,7 +107,9 @@ fn theorem_2_validity_after_every_replacement() {
         let flags = Flags::Mark(flag);
         for d in m.cells(Orbit::Face).collect::<Vec<_>>() {
             let (i, aligned) = find_face(&m, &set, flags, d, true).expect("every face matches");
-            replace_face(&mut m, &set.patterns[i], &aligned);
+            let before = m.nb_darts();
+            let added = replace_face(&mut m, &set.patterns[i], &aligned);
+            assert!(added > 0 && m.nb_darts() == before + added, "{set_name}: {added} darts said added");
             let v = m.is_valid();
             assert!(v.is_empty(), "{set_name}: after a face replacement: {}", v[0]);
         }

@@ -235,3 +235,27 @@ fn patterns_with_split_boundaries_are_rejected() {
     qmesh::io::write_map(&closed, &m, None, &Default::default()).unwrap();
     assert!(load_pattern(&closed, FlagRule::Corners).is_ok(), "a single hexahedron is a valid v-pattern");
 }
+
+#[test]
+fn word_from_stops_exactly_when_the_word_exceeds_its_bound() {
+    use qmesh::build::{BuildOptions, CellKind, IndexedMesh, build_volume_map};
+    use qmesh::signature::word_from;
+    // A square pyramid: words from base darts and from side darts differ.
+    let mut mesh = IndexedMesh::new();
+    mesh.points = vec![[0., 0., 0.], [1., 0., 0.], [1., 1., 0.], [0., 1., 0.], [0.5, 0.5, 1.]];
+    mesh.push_cell(CellKind::Pyramid, &[0, 1, 2, 3, 4], None);
+    let (m, _) = build_volume_map(&mesh, &BuildOptions::default()).unwrap();
+    let words: Vec<(qmesh::cmap::Dart, Vec<u32>)> =
+        m.darts().map(|d| (d, word_from(&m, Surface::Cell, Flags::None, d, None).unwrap().word)).collect();
+    let distinct: std::collections::BTreeSet<&Vec<u32>> = words.iter().map(|(_, w)| w).collect();
+    assert!(distinct.len() >= 2, "the pyramid should give several words");
+    for bound in &distinct {
+        for (d, w) in &words {
+            let got = word_from(&m, Surface::Cell, Flags::None, *d, Some(bound));
+            assert_eq!(got.is_some(), w <= *bound, "start {d}: word {w:?}, bound {bound:?}");
+            if let Some(g) = got {
+                assert_eq!(&g.word, w, "a bound never changes the word it lets through");
+            }
+        }
+    }
+}
