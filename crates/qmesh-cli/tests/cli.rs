@@ -435,6 +435,11 @@ fn terrain_example_runs_the_papers_two_steps_from_its_rule_files() {
     assert_eq!((r["matches"].as_u64(), r["modified"].as_u64()), (Some(spots_made), Some(spots_made)));
     assert_eq!(j["volumes"].as_u64(), Some(256 - 8 * spots_made + 3 * spots_made));
     assert_eq!(j["valid"], true);
+    // `qmesh query` picks at random the way `modify` does, counting every match.
+    let block = example.join("block.vtk");
+    let (b, t_) = (block.to_str().unwrap(), t.to_str().unwrap());
+    let j = json_of(&["query", b, t_, "--strategy", "random", "--seed", "4", "--max", "3", "--json"]);
+    assert_eq!((j["queries"][0]["matches"].as_u64(), j["selected"].as_u64()), (Some(14 * 14), Some(3)));
     // Bad terrain options are refused with the option's name.
     let (code, _, err) = qmesh(&["generate", "terrain", "--roughness", "2", "-o", t.to_str().unwrap()]);
     assert_eq!(code, 2, "{err}");

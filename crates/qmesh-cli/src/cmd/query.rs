@@ -8,7 +8,7 @@ use std::process::ExitCode;
 use anyhow::{Result, anyhow, bail};
 use qmesh::build::BuildOptions;
 use qmesh::io::{WriteOptions, load_map, write_map_with_arrays};
-use qmesh::query::{MatchOptions, Metric, QuerySet, Strategy, find_matches, select};
+use qmesh::query::{MatchOptions, Metric, QuerySet, Separation, Strategy, find_matches, select, select_random_lazily};
 use serde_json::json;
 
 use super::rules::{QueryArgs, match_arrays, rules_of, set_threads};
@@ -77,7 +77,14 @@ pub fn run(a: Args) -> Result<ExitCode> {
         &MatchOptions { all_automorphisms: a.all, metric: metric.as_ref(), ..Default::default() },
     );
     let t = std::time::Instant::now();
-    let chosen = strategy.map(|s| select(map, &set, &found.matches, s, a.max));
+    // A random choice with a max is the one `qmesh modify` makes (start darts drawn
+    // lazily), so that the same seed picks the same matches in both commands.
+    let chosen = strategy.map(|s| match (s, a.max) {
+        (Strategy::Random(seed), Some(max)) => {
+            select_random_lazily(map, &set, &MatchOptions::default(), seed, max, Separation::Darts).0
+        }
+        _ => select(map, &set, &found.matches, s, a.max),
+    });
     let select_seconds = t.elapsed().as_secs_f64();
     pb.finish_and_clear();
     if let Some(out) = &a.output {
