@@ -5,9 +5,7 @@
 #   examples/query-modify/run.sh            (uses $QMESH_BIN, default target/release/qmesh, built if needed)
 set -euo pipefail
 cd "$(dirname "$0")"
-root=$(cd ../.. && pwd)
-Q="${QMESH_BIN:-$root/target/release/qmesh}"
-[ -x "$Q" ] || (cd "$root" && cargo build --release --quiet)
+. ../qmesh_bin.sh
 mkdir -p out
 cd out
 

@@ -5,9 +5,7 @@
 #   examples/recombine/run.sh [HEX_MESH]   (default: $QMESH_DATA/hex/rockerarm.mesh)
 set -euo pipefail
 cd "$(dirname "$0")"
-root=$(cd ../.. && pwd)
-Q="${QMESH_BIN:-$root/target/release/qmesh}"
-[ -x "$Q" ] || (cd "$root" && cargo build --release --quiet)
+. ../qmesh_bin.sh
 data=${QMESH_DATA:-$root/../shared/data}
 input=${1:-$data/hex/rockerarm.mesh}
 mkdir -p out pictures

@@ -9,30 +9,11 @@ around the ridge line.
 The spot is copied as it is, so the target contains the query exactly; open house.vtk
 in ParaView or a modeler to change the house, the rule file stays the same."""
 import math
+import os
 import sys
 
-
-def read_polyhedra(path):
-    """Points and polyhedron face lists of a legacy ASCII VTK file written by qmesh."""
-    words = open(path).read().split()
-    at = words.index("POINTS")
-    n = int(words[at + 1])
-    pts = [tuple(float(w) for w in words[at + 3 + 3 * i : at + 6 + 3 * i]) for i in range(n)]
-    at = words.index("CELLS")
-    ncells = int(words[at + 1])
-    i = at + 3
-    cells = []
-    for _ in range(ncells):
-        size = int(words[i])
-        stream = [int(w) for w in words[i + 1 : i + 1 + size]]
-        i += 1 + size
-        faces, k = [], 1
-        for _ in range(stream[0]):
-            m = stream[k]
-            faces.append(stream[k + 1 : k + 1 + m])
-            k += 1 + m
-        cells.append(faces)
-    return pts, cells
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from meshfiles import read_polyhedra, write_polyhedra  # noqa: E402
 
 
 def signed_area_xy(pts, ring):
@@ -77,21 +58,7 @@ def main(spot_path, out_path, wall=0.8, roof=1.0):
     fan = [[ring3[0], ring3[k], ring3[k + 1]] for k in range(1, 11)]
     roof_cell = [ring2[::-1]] + sides(ring2, ring3) + fan
     out = [spot, floor1, floor2, roof_cell]
-    streams = []
-    for faces in out:
-        s = [len(faces)]
-        for f in faces:
-            s += [len(f)] + list(f)
-        streams.append(s)
-    with open(out_path, "w") as f:
-        f.write("# vtk DataFile Version 2.0\nflattened spot with a house (qmesh examples/terrain)\n")
-        f.write(f"ASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS {len(pts)} double\n")
-        for p in pts:
-            f.write(" ".join(repr(round(c, 12)) for c in p) + "\n")
-        f.write(f"CELLS {len(streams)} {sum(len(s) + 1 for s in streams)}\n")
-        for s in streams:
-            f.write(" ".join(str(x) for x in [len(s)] + s) + "\n")
-        f.write(f"CELL_TYPES {len(streams)}\n" + "42\n" * len(streams))
+    write_polyhedra(out_path, "flattened spot with a house (qmesh examples/terrain)", pts, out)
 
 
 if __name__ == "__main__":

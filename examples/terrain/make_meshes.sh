@@ -4,9 +4,7 @@
 #   examples/terrain/make_meshes.sh     (uses $QMESH_BIN, default target/release/qmesh)
 set -euo pipefail
 cd "$(dirname "$0")"
-root=$(cd ../.. && pwd)
-Q="${QMESH_BIN:-$root/target/release/qmesh}"
-[ -x "$Q" ] || (cd "$root" && cargo build --release --quiet)
+. ../qmesh_bin.sh
 "$Q" generate terrain --size 3 --relief 0 --base 12 -o block.vtk -q
 "$Q" modify block.vtk spot.vtk --rules flatten-one.toml --force -q
 python3 house.py spot.vtk house.vtk

@@ -5,9 +5,7 @@
 #   examples/terrain/run.sh [SIZE]     (uses $QMESH_BIN, default target/release/qmesh)
 set -euo pipefail
 cd "$(dirname "$0")"
-root=$(cd ../.. && pwd)
-Q="${QMESH_BIN:-$root/target/release/qmesh}"
-[ -x "$Q" ] || (cd "$root" && cargo build --release --quiet)
+. ../qmesh_bin.sh
 size="${1:-128}"
 mkdir -p out pictures
 "$Q" generate terrain --size "$size" --base 12 --seed 1 -o out/terrain.vtk --json > out/step1.json

@@ -6,6 +6,7 @@ use std::process::Command;
 use qmesh::cmap::CMap3;
 use qmesh::io::{WriteOptions, write_map};
 
+mod examples;
 mod first_hour;
 
 fn qmesh(args: &[&str]) -> (i32, String, String) {
@@ -338,6 +339,12 @@ fn render_draws_shrunk_clipped_cells() {
         "--json",
     ]);
     assert_eq!(half["cells_drawn"], 108);
+    // Repeated clips keep a box: 2 of 6 columns, 3 of 6 rows, 1 of 6 layers.
+    let g = grid.to_str().unwrap();
+    let p = png.to_str().unwrap();
+    let b =
+        json_of(&["render", g, "-o", p, "--clip", "x>3", "--clip", "x<5", "--clip", "y<3", "--clip", "z>5", "--json"]);
+    assert_eq!(b["cells_drawn"], 6);
     let (code, _, err) = qmesh(&["render", grid.to_str().unwrap(), "-o", png.to_str().unwrap(), "--clip", "w<3"]);
     assert_eq!(code, 2);
     assert!(err.contains("axis 'w'"), "{err}");
@@ -411,40 +418,4 @@ fn tetrahedralize_then_recombine_gives_the_hexahedra_back() {
     let (code, _, err) = qmesh(&["tetrahedralize", &s(&tets), "-o", &s(&back)]);
     assert_eq!(code, 2);
     assert!(err.contains("no hexahedron"), "{err}");
-}
-
-#[test]
-fn terrain_example_runs_the_papers_two_steps_from_its_rule_files() {
-    // 2025 §7.4 on a 16×16 terrain with the rule files and meshes of examples/terrain.
-    let example = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/terrain");
-    let (t, spots, houses) = (temp("terrain.vtk"), temp("terrain_spots.vtk"), temp("terrain_houses.vtk"));
-    let j = json_of(&["generate", "terrain", "--size", "16", "--base", "12", "-o", t.to_str().unwrap(), "--json"]);
-    assert_eq!((j["volumes"].as_u64(), j["darts"].as_u64()), (Some(256), Some(256 * 26)));
-    let rules = |f: &str| example.join(f).to_str().unwrap().to_string();
-    let flatten = rules("flatten.toml");
-    let j = json_of(&["modify", t.to_str().unwrap(), spots.to_str().unwrap(), "--rules", &flatten, "--json"]);
-    let r = &j["rules"][0];
-    assert_eq!(r["op"].as_str(), Some("apply"));
-    assert!(r["starts_tested"].as_u64().is_some_and(|n| n > 0 && n <= 256 * 26), "{r}");
-    let spots_made = r["modified"].as_u64().unwrap();
-    assert!(spots_made >= 5, "only {spots_made} spots on 16×16 voxels");
-    assert_eq!(j["volumes"].as_u64(), Some(256 - 8 * spots_made));
-    let house_rules = rules("houses.toml");
-    let j = json_of(&["modify", spots.to_str().unwrap(), houses.to_str().unwrap(), "--rules", &house_rules, "--json"]);
-    let r = &j["rules"][0];
-    assert_eq!((r["matches"].as_u64(), r["modified"].as_u64()), (Some(spots_made), Some(spots_made)));
-    assert_eq!(j["volumes"].as_u64(), Some(256 - 8 * spots_made + 3 * spots_made));
-    assert_eq!(j["valid"], true);
-    // `qmesh query` picks at random the way `modify` does, counting every match.
-    let block = example.join("block.vtk");
-    let (b, t_) = (block.to_str().unwrap(), t.to_str().unwrap());
-    let j = json_of(&["query", b, t_, "--strategy", "random", "--seed", "4", "--max", "3", "--json"]);
-    assert_eq!((j["queries"][0]["matches"].as_u64(), j["selected"].as_u64()), (Some(14 * 14), Some(3)));
-    // Bad terrain options are refused with the option's name.
-    let (code, _, err) = qmesh(&["generate", "terrain", "--roughness", "2", "-o", t.to_str().unwrap()]);
-    assert_eq!(code, 2, "{err}");
-    assert!(err.contains("--roughness must be in (0, 1]"), "{err}");
-    let (code, _, err) = qmesh(&["generate", "terrain", "--size", "4,0", "-o", t.to_str().unwrap()]);
-    assert_eq!(code, 2, "{err}");
-    assert!(err.contains("--size takes N or NX,NY"), "{err}");
 }

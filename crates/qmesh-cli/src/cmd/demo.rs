@@ -40,8 +40,8 @@ fn save(dir: &Path, name: &str, mesh: &IndexedMesh, what: &str, picture: RenderO
 }
 
 /// Half of the mesh, cut facing the default (iso) view: the eye is on the +x, −y side.
-fn half(axis: usize) -> Option<Clip> {
-    Some(Clip { axis, below: axis == 0, value: 0.5, relative: true })
+fn half(axis: usize) -> Vec<Clip> {
+    vec![Clip { axis, below: axis == 0, value: 0.5, relative: true }]
 }
 
 pub fn run(a: Args) -> Result<ExitCode> {
@@ -50,17 +50,17 @@ pub fn run(a: Args) -> Result<ExitCode> {
     let t = Instant::now();
     println!("qmesh demo: the 2022 query-replace applications on built-in inputs, into {}", dir.display());
     let by_type = RenderOptions::default();
-    let view = RenderOptions { clip: half(1), ..by_type };
+    let view = RenderOptions { clip: half(1), ..by_type.clone() };
 
     // 1. A torus surface and its octree (Algorithm 5), then conformal transitions (Algorithm 7).
     let torus = torus_surface(1.0, 0.4, 48, 24);
-    save(dir, "torus.off", &torus, &format!("torus surface: {} triangles", torus.nb_polygons()), by_type)?;
+    save(dir, "torus.off", &torus, &format!("torus surface: {} triangles", torus.nb_polygons()), by_type.clone())?;
     let bvh = TriangleBvh::from_polygons(&torus.points, (0..torus.nb_polygons()).map(|i| torus.polygon(i)));
     let opts = SubdivideOptions { levels: 5, remove_outside: true, ..Default::default() };
     let octree = subdivide(&bvh, &opts, None, &|_| {})?;
     let r = &octree.report;
     let what = format!("octree l_max 5: {} hexahedra, {} fqr, {} vqr", r.volumes, r.faces_replaced, r.volumes_replaced);
-    save(dir, "torus_octree.vtk", &octree.mesh, &what, RenderOptions { color_by: ColorBy::Level, ..view })?;
+    save(dir, "torus_octree.vtk", &octree.mesh, &what, RenderOptions { color_by: ColorBy::Level, ..view.clone() })?;
     let transitions = generated_pattern_set(GeneratedKind::Transitions, FlagRule::Corners)?;
     let (map, c) = conformal(&octree.mesh, &transitions, true)?;
     let k = c.kinds;
@@ -77,7 +77,7 @@ pub fn run(a: Args) -> Result<ExitCode> {
         .unwrap_or_else(|e| format!("unknown ({e})"));
     let what =
         format!("marching cubes of the octree: {} triangles, χ {chi}, {} cubes", tri.nb_polygons(), r.volumes_replaced);
-    save(dir, "torus_marching_cubes.off", &tri, &what, by_type)?;
+    save(dir, "torus_marching_cubes.off", &tri, &what, by_type.clone())?;
     let n = 40usize;
     let field: Vec<f32> = (0..n * n * n)
         .map(|idx| {
@@ -93,7 +93,7 @@ pub fn run(a: Args) -> Result<ExitCode> {
         r.f_patterns,
         r.v_patterns
     );
-    save(dir, "gyroid.off", &g, &what, by_type)?;
+    save(dir, "gyroid.off", &g, &what, by_type.clone())?;
 
     // 3. Hexahedra split in 8 and tetrahedra into 4 hexahedra (query-replace, §7.1, §7.4).
     let (mut hex, _) = build_volume_map(&hex_grid(6, 4, 3), &BuildOptions::default())?;
@@ -106,12 +106,12 @@ pub fn run(a: Args) -> Result<ExitCode> {
         "hex_grid_subdivided.vtk",
         &extract(&hex).0,
         &what,
-        RenderOptions { clip: half(0), color_by: ColorBy::Quality, ..by_type },
+        RenderOptions { clip: half(0), color_by: ColorBy::Quality, ..by_type.clone() },
     )?;
     let (mut tet, _) = build_volume_map(&tet_grid(4, 4, 4), &BuildOptions::default())?;
     let r = tet_to_hex(&mut tet, None, true)?;
     let what = format!("384 tets into hexahedra: {} replaced, valid {}", r.volumes_replaced, tet.is_valid().is_empty());
-    save(dir, "tet_grid_to_hex.vtk", &extract(&tet).0, &what, RenderOptions { clip: half(0), ..by_type })?;
+    save(dir, "tet_grid_to_hex.vtk", &extract(&tet).0, &what, RenderOptions { clip: half(0), ..by_type.clone() })?;
     println!(
         "done in {:.2} s — open the .vtk files in ParaView, or try: qmesh info {}",
         t.elapsed().as_secs_f64(),

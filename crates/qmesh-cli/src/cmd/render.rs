@@ -31,14 +31,14 @@ pub struct Args {
     #[arg(long, default_value_t = 0.85)]
     pub shrink: f64,
     /// Keep the cells whose centroid satisfies AXIS<VALUE or AXIS>VALUE (e.g. x<0.5, or
-    /// x<50% of the mesh's extent).
+    /// x<50% of the mesh's extent); repeat to keep a box (--clip x>2 --clip x<3).
     #[arg(long)]
-    pub clip: Option<String>,
+    pub clip: Vec<String>,
     /// Cell colours.
     #[arg(long, value_enum, default_value = "type")]
     pub color_by: ColorArg,
-    /// iso, x, y, z (looking from that axis), or AZ,EL in degrees.
-    #[arg(long, default_value = "iso")]
+    /// iso, x, y, z (looking from that axis), or AZ,EL in degrees (may be negative).
+    #[arg(long, default_value = "iso", allow_hyphen_values = true)]
     pub view: String,
     /// Image size W,H in pixels.
     #[arg(long, default_value = "1200,900")]
@@ -116,7 +116,7 @@ pub fn run(a: Args) -> Result<ExitCode> {
     }
     let opts = RenderOptions {
         shrink: a.shrink,
-        clip: a.clip.as_deref().map(parse_clip).transpose()?,
+        clip: a.clip.iter().map(|c| parse_clip(c)).collect::<Result<_>>()?,
         color_by: match a.color_by {
             ColorArg::Type => ColorBy::Type,
             ColorArg::Level => ColorBy::Level,
@@ -142,7 +142,7 @@ pub fn run(a: Args) -> Result<ExitCode> {
     };
     let cells = if mesh.is_volume() { mesh.nb_cells() } else { mesh.nb_polygons() };
     let name = a.input.file_name().map_or_else(|| a.input.display().to_string(), |n| n.to_string_lossy().into_owned());
-    let clipped = a.clip.as_deref().map(|c| format!(", clipped {c}")).unwrap_or_default();
+    let clipped = if a.clip.is_empty() { String::new() } else { format!(", clipped {}", a.clip.join(" ")) };
     let title = format!(
         "{name} - {cells} {} - coloured by {colouring}{clipped}",
         if mesh.is_volume() { "cells" } else { "polygons" }

@@ -48,6 +48,9 @@ pub fn execute(map: &mut CMap3, plan: &Plan, matched: &[Dart]) -> (Executed, Vec
         map.delete_dart(x);
     }
     // Add: create, then link as in the target.
+    if plan.new_darts.iter().any(|n| n.label != 0) {
+        map.enable_labels();
+    }
     let new: Vec<Dart> = plan
         .new_darts
         .iter()
@@ -57,7 +60,8 @@ pub fn execute(map: &mut CMap3, plan: &Plan, matched: &[Dart]) -> (Executed, Vec
                 VertexOf::Created(i) => created[i as usize],
             };
             let d = map.create_dart(v);
-            map.set_label_of(d, map.label_of(at(n.label_from)));
+            let label = if n.label != 0 { n.label } else { map.label_of(at(n.label_from)) };
+            map.set_label_of(d, label);
             d
         })
         .collect();

@@ -44,7 +44,7 @@ impl FacePattern {
         for &x in &interior {
             let b2 = pm.beta(x, 2).expect("interior darts are 2-sewn");
             let links = [rep(pm.next(x)), Link::New(index[&b2]), Link::Free];
-            new_darts.push(NewDart { links, vertex: vertex(pm.vertex_of(x))?, label_from: 1 });
+            new_darts.push(NewDart { links, vertex: vertex(pm.vertex_of(x))?, label_from: 1, label: 0 });
         }
         let relink: Vec<(u32, usize, Link)> = p.cycle.iter().map(|&b| (boundary[&b], 1, rep(pm.next(b)))).collect();
         let one_side = Plan {
@@ -61,7 +61,12 @@ impl FacePattern {
         for (i, &x) in interior.iter().enumerate() {
             let b2 = pm.beta(x, 2).expect("interior darts are 2-sewn");
             let links = [mrep(pm.prev(x)), Link::New(n + index[&b2]), Link::New(i as u32)];
-            new_darts.push(NewDart { links, vertex: vertex(pm.vertex_of(pm.next(x)))?, label_from: k as u32 + 1 });
+            new_darts.push(NewDart {
+                links,
+                vertex: vertex(pm.vertex_of(pm.next(x)))?,
+                label_from: k as u32 + 1,
+                label: 0,
+            });
         }
         let mut relink = relink;
         relink.extend(p.cycle.iter().map(|&b| (boundary[&b] + k as u32, 1, mrep(pm.prev(b)))));

@@ -65,8 +65,10 @@ pub(crate) struct NewDart {
     /// β1, β2, β3.
     pub links: [Link; 3],
     pub vertex: VertexOf,
-    /// The label whose matched dart's volume label the new dart takes.
+    /// The label whose matched dart's volume label the new dart takes…
     pub label_from: u32,
+    /// … unless the target gives its volume a label of its own (non-zero).
+    pub label: i32,
 }
 
 /// A modification in query labels.
@@ -172,7 +174,7 @@ fn extend_plan(q: &mut Query, t: &CMap3) -> Result<Plan, ModifyError> {
                 _ => return Err(ModifyError::NotSubmap { op: Operation::Extend }),
             };
         }
-        new_darts.push(NewDart { links, vertex: vertices.of(t.vertex_of(d)), label_from: 1 });
+        new_darts.push(NewDart { links, vertex: vertices.of(t.vertex_of(d)), label_from: 1, label: t.label_of(d) });
     }
     // The match darts that new volumes are glued to must be on the input's boundary.
     let attached: rustc_hash::FxHashSet<u32> = attached.into_iter().collect();
@@ -214,7 +216,7 @@ fn replace_plan(q: &Query, t: &CMap3) -> Result<Plan, ModifyError> {
     let mut new_darts = Vec::with_capacity(new.len());
     for &d in &new {
         let links = [1, 2, 3].map(|i| t.beta(d, i).map_or(Link::Free, link_to));
-        new_darts.push(NewDart { links, vertex: vertices.of(t.vertex_of(d)), label_from: 1 });
+        new_darts.push(NewDart { links, vertex: vertices.of(t.vertex_of(d)), label_from: 1, label: t.label_of(d) });
     }
     let relink = pairs
         .iter()

@@ -46,7 +46,7 @@ impl VolumePattern {
                     Some(&l) => VertexOf::Matched(l),
                     None => VertexOf::Created(*created.get(&v)?),
                 };
-                Some(NewDart { links: [1, 2, 3].map(|i| link(pm.beta(x, i))), vertex, label_from: 1 })
+                Some(NewDart { links: [1, 2, 3].map(|i| link(pm.beta(x, i))), vertex, label_from: 1, label: 0 })
             })
             .collect::<Option<Vec<_>>>()?;
         let plan =

@@ -30,11 +30,12 @@ pub struct Clip {
 }
 
 /// Options of [`render`].
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Debug)]
 pub struct RenderOptions {
     /// Cells shrunk toward their centroid by this factor (1 = no gap).
     pub shrink: f64,
-    pub clip: Option<Clip>,
+    /// Cells kept: those whose centroid passes every clip (all when empty).
+    pub clip: Vec<Clip>,
     pub color_by: ColorBy,
     /// Viewing direction: azimuth and elevation in degrees (the eye's direction from
     /// the mesh centre; z is up).
@@ -47,7 +48,7 @@ impl Default for RenderOptions {
     fn default() -> Self {
         RenderOptions {
             shrink: 0.85,
-            clip: None,
+            clip: Vec::new(),
             color_by: ColorBy::Type,
             view: (-55.0, 25.0),
             size: (1200, 900),
@@ -238,13 +239,15 @@ pub fn render_titled(mesh: &IndexedMesh, opts: &RenderOptions, title: Option<&st
     };
     let whole = Aabb::of(mesh.points.iter().copied());
     let kept: Vec<bool> = (0..count)
-        .map(|i| match opts.clip {
-            Some(c) if volume => {
-                let x = centre_of(&faces_of(i))[c.axis];
-                let v = if c.relative { whole.lo[c.axis] + c.value * whole.extent()[c.axis] } else { c.value };
-                if c.below { x < v } else { x > v }
+        .map(|i| {
+            if !volume || opts.clip.is_empty() {
+                return true;
             }
-            _ => true,
+            let centre = centre_of(&faces_of(i));
+            opts.clip.iter().all(|c| {
+                let v = if c.relative { whole.lo[c.axis] + c.value * whole.extent()[c.axis] } else { c.value };
+                if c.below { centre[c.axis] < v } else { centre[c.axis] > v }
+            })
         })
         .collect();
     let bounds = Aabb::of(
