@@ -1,8 +1,41 @@
-"""Small helpers shared by the example scripts: volumes as lists of faces (each face a
+"""Small helpers shared by the example scripts (and their command line): volumes as lists of faces (each face a
 list of point ids, counter-clockwise seen from outside), points merged by position so
 that volumes touching along a face share it, legacy ASCII VTK files of polyhedra
 (cell type 42, which qmesh, ParaView and meshio all read) and Medit files of
 hexahedra with referenced quadrilaterals (how a rule's query names its faces)."""
+
+
+import math
+import sys
+
+
+def run_generator(usage, write_rule_meshes, main, defaults=()):
+    """The command line of the example generators: `--rule-meshes DIR`, or `OUT_DIR`
+    and up to len(defaults) integers (the rest take their defaults)."""
+    args = sys.argv[1:]
+    if len(args) == 2 and args[0] == "--rule-meshes":
+        write_rule_meshes(args[1])
+    elif 1 <= len(args) <= 1 + len(defaults) and not args[0].startswith("-"):
+        try:
+            numbers = [int(a) for a in args[1:]]
+        except ValueError:
+            sys.exit("usage: " + usage)
+        main(args[0], *numbers, *defaults[len(numbers):])
+    else:
+        sys.exit("usage: " + usage)
+
+
+def random_rotation(rng):
+    """A uniformly random rotation matrix (from a random unit quaternion)."""
+    while True:
+        q = [rng.gauss(0, 1) for _ in range(4)]
+        n = math.sqrt(sum(x * x for x in q))
+        if n > 1e-6:
+            break
+    w, x, y, z = (c / n for c in q)
+    return [[1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
+            [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
+            [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)]]
 
 
 class Points:
@@ -27,6 +60,17 @@ def hexahedron(points, corners):
     faces = [[v[0], v[3], v[2], v[1]], [v[4], v[5], v[6], v[7]], [v[0], v[1], v[5], v[4]],
              [v[1], v[2], v[6], v[5]], [v[2], v[3], v[7], v[6]], [v[3], v[0], v[4], v[7]]]
     return outward(points, faces)
+
+
+def shuffled(cell, rng):
+    """The faces of `cell` in a random order, each starting at a random corner."""
+    faces = list(cell)
+    rng.shuffle(faces)
+    out = []
+    for f in faces:
+        k = rng.randrange(len(f))
+        out.append(f[k:] + f[:k])
+    return out
 
 
 def signed_volume(points, faces):

@@ -16,13 +16,13 @@ The scene and the expected result:
   figures_expected.vtk  the same figures with a toe cap on each boot, drawn directly.
 The rule meshes: the left boot (the face under the thigh has reference 1) and the
 same with its toe cap (reference 3: the label the new volumes get)."""
-import math
 import os
 import random
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
-from meshfiles import Points, hexahedron, write_medit_hexahedra, write_polyhedra  # noqa: E402
+from meshfiles import (Points, hexahedron, random_rotation, run_generator, shuffled,  # noqa: E402
+                        write_medit_hexahedra, write_polyhedra)  # noqa: E402
 
 BODY, BOOT, TOE = 1, 2, 3
 SPACING = 4.5  # between the figures (each fits in a ball of radius 2 about its feet)
@@ -62,30 +62,6 @@ def boot(dx, toe):
         tip = [tip[1], tip[0], tip[3], tip[2]]
         cells.append([front[0], front[1], tip[1], tip[0], front[3], front[2], tip[2], tip[3]])
     return cells
-
-
-def random_rotation(rng):
-    """A uniformly random rotation matrix (from a random unit quaternion)."""
-    while True:
-        q = [rng.gauss(0, 1) for _ in range(4)]
-        n = math.sqrt(sum(x * x for x in q))
-        if n > 1e-6:
-            break
-    w, x, y, z = (c / n for c in q)
-    return [[1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
-            [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
-            [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)]]
-
-
-def shuffled(cell, rng):
-    """The faces of `cell` in a random order, each starting at a random corner."""
-    faces = list(cell)
-    rng.shuffle(faces)
-    out = []
-    for f in faces:
-        k = rng.randrange(len(f))
-        out.append(f[k:] + f[:k])
-    return out
 
 
 def scene(copies, seed, with_toes):
@@ -128,10 +104,4 @@ def main(out_dir, copies, seed):
 
 
 if __name__ == "__main__":
-    args = sys.argv[1:]
-    if len(args) == 2 and args[0] == "--rule-meshes":
-        write_rule_meshes(args[1])
-    elif 1 <= len(args) <= 3 and not args[0].startswith("-"):
-        main(args[0], int(args[1]) if len(args) > 1 else 8, int(args[2]) if len(args) > 2 else 1)
-    else:
-        sys.exit("usage: boots.py OUT_DIR [COPIES] [SEED] | boots.py --rule-meshes DIR")
+    run_generator("boots.py OUT_DIR [COPIES] [SEED] | boots.py --rule-meshes DIR", write_rule_meshes, main, (8, 1))

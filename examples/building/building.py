@@ -22,7 +22,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
-from meshfiles import Points, hexahedron, outward, write_medit_hexahedra, write_polyhedra  # noqa: E402
+from meshfiles import Points, hexahedron, outward, run_generator, write_medit_hexahedra, write_polyhedra  # noqa: E402
 
 SLAB, WALL, GLASS, DOOR, HANDLE = 1, 2, 3, 4, 5
 WIDTH, DEPTH = 12.0, 8.0          # footprint along x and y
@@ -254,9 +254,4 @@ def write_model(out_dir, mesh):
 
 
 if __name__ == "__main__":
-    if len(sys.argv) == 3 and sys.argv[1] == "--rule-meshes":
-        write_rule_meshes(sys.argv[2])
-    elif len(sys.argv) == 2 and not sys.argv[1].startswith("-"):
-        main(sys.argv[1])
-    else:
-        sys.exit("usage: building.py OUT_DIR | building.py --rule-meshes DIR")
+    run_generator("building.py OUT_DIR | building.py --rule-meshes DIR", write_rule_meshes, main)

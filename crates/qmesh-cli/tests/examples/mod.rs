@@ -104,6 +104,33 @@ fn boots_example_puts_every_toe_cap_in_front_only_with_the_geometric_orientation
     assert!(misplaced[1] >= 4 * 4, "without it, {} toe corners are elsewhere", misplaced[1]);
 }
 
+/// 2025 §7.3 and §8, Fig. 13a: an extend then a replace flange every nut of a model of
+/// repeated parts (one closed surface each); the look-alike spacers (the nut's mesh
+/// topology, another shape) are left alone only with `max_residual`.
+#[test]
+fn parts_example_flanges_every_nut_and_no_look_alike() {
+    let dir = example("parts");
+    let out = temp("parts");
+    generate(&dir.join("nuts.py"), &[s(&out)]);
+    let input = out.join("nuts.vtk");
+    let expected = point_set(&out.join("nuts_expected.vtk"));
+    for (rules, flanged) in [("nuts.toml", 6), ("nuts-topology-only.toml", 8)] {
+        let result = out.join(rules.replace(".toml", "_result.vtk"));
+        let j = json_of(&["modify", s(&input), s(&result), "--rules", s(&dir.join(rules)), "--json"]);
+        let (glue, merge) = (&j["rules"][0], &j["rules"][1]);
+        assert_eq!((glue["op"].as_str(), merge["op"].as_str()), (Some("extend"), Some("replace")));
+        assert_eq!((glue["matches"].as_u64(), glue["modified"].as_u64()), (Some(flanged), Some(flanged)), "{glue}");
+        assert_eq!(glue["automorphisms"].as_u64(), Some(96), "the nut's mesh is a 12 × 4 torus grid");
+        assert_eq!((glue["volumes_after"].as_u64(), glue["valid"].as_bool()), (Some(8 + flanged), Some(true)));
+        assert_eq!((merge["modified"].as_u64(), merge["volumes_after"].as_u64()), (Some(flanged), Some(8)));
+        assert_eq!(merge["valid"].as_bool(), Some(true));
+        let got = point_set(&result);
+        // Each flange brings 24 points; with max_residual they are exactly the drawn ones.
+        assert_eq!(got.difference(&expected).count(), 24 * (flanged as usize - 6), "{rules}");
+        assert!(expected.is_subset(&got), "{rules}: every nut flanged as drawn");
+    }
+}
+
 #[test]
 fn terrain_example_runs_the_papers_two_steps_from_its_rule_files() {
     // 2025 §7.4 on a 16×16 terrain with the rule files and meshes of examples/terrain.

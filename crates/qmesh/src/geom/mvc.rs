@@ -46,6 +46,10 @@ pub fn mvc_polygon(poly: &[[f64; 3]], x: [f64; 3]) -> Vec<f64> {
     w
 }
 
+/// |u0 · (u1 × u2)| of the unit directions to a triangle's corners under which `x` is
+/// taken to be in the triangle's plane: a point 1e-13 (relative) off it is.
+const COPLANAR: f64 = 1e-10;
+
 /// Mean value coordinates of `x` with respect to a closed triangle mesh given by its
 /// vertex positions and consistently oriented triangles. Weights sum to 1.
 pub fn mvc_triangles(verts: &[[f64; 3]], tris: &[[usize; 3]], x: [f64; 3]) -> Vec<f64> {
@@ -59,8 +63,12 @@ pub fn mvc_triangles(verts: &[[f64; 3]], tris: &[[usize; 3]], x: [f64; 3]) -> Ve
     }
     let u: Vec<[f64; 3]> = verts.iter().zip(&d).map(|(&p, &l)| sub(p, x).map(|c| c / l)).collect();
     for t in tris {
-        let l: [f64; 3] = std::array::from_fn(|i| norm(sub(u[t[(i + 1) % 3]], u[t[(i + 2) % 3]])));
-        let theta: [f64; 3] = l.map(|li| 2.0 * (li / 2.0).min(1.0).asin());
+        // The angle between two unit vectors a, b as 2·atan2(|a − b|, |a + b|): exact to
+        // rounding near π too (2·asin(|a − b| / 2) loses half the digits there).
+        let theta: [f64; 3] = std::array::from_fn(|i| {
+            let (a, b) = (u[t[(i + 1) % 3]], u[t[(i + 2) % 3]]);
+            2.0 * norm(sub(a, b)).atan2(norm([a[0] + b[0], a[1] + b[1], a[2] + b[2]]))
+        });
         let h = (theta[0] + theta[1] + theta[2]) / 2.0;
         if std::f64::consts::PI - h < 1e-9 {
             // x lies on this triangle: barycentric weights.
@@ -73,6 +81,11 @@ pub fn mvc_triangles(verts: &[[f64; 3]], tris: &[[usize; 3]], x: [f64; 3]) -> Ve
             return out;
         }
         let det = dot(u[t[0]], cross(u[t[1]], u[t[2]]));
+        if det.abs() <= COPLANAR {
+            // x is (to rounding) in the plane of this triangle, outside it: the
+            // triangle's weights tend to 0 there, but 1/s below would amplify rounding.
+            continue;
+        }
         let sign = if det < 0.0 { -1.0 } else { 1.0 };
         let c: [f64; 3] = std::array::from_fn(|i| {
             2.0 * h.sin() * (h - theta[i]).sin() / (theta[(i + 1) % 3].sin() * theta[(i + 2) % 3].sin()) - 1.0
@@ -132,6 +145,19 @@ mod tests {
             assert!((w.iter().sum::<f64>() - 1.0).abs() < 1e-12);
             let p = apply(&w, &v);
             assert!((0..3).all(|k| (p[k] - x[k]).abs() < 1e-6), "{x:?} -> {p:?}");
+        }
+        // Outside the cage, in (or a rounding error off) the plane of a face: linear
+        // precision holds there too, to rounding, not to 1e-3.
+        let off = [1e-14, -3e-14, 1e-13, -1e-12, 7e-13];
+        let mut points = vec![[1.5, 0.5, 1.0 + 1e-13], [2.0, 0.5, 1.0], [0.5, -0.5, 1.0 - 1e-12], [1.25, 1.25, 0.0]];
+        // … and along the side planes beyond the cage's corners and edges.
+        for (k, &e) in off.iter().enumerate() {
+            let t = 0.1 + 0.37 * k as f64;
+            points.extend([[1.0 + e, 1.0, 1.0 + t], [1.0, 0.3 + e, 1.0 + t], [e, 0.7, -t], [1.0 + t, 1.0 - e, 0.4]]);
+        }
+        for x in points {
+            let p = apply(&mvc_triangles(&v, &tris, x), &v);
+            assert!((0..3).all(|k| (p[k] - x[k]).abs() < 1e-9), "{x:?} -> {p:?}");
         }
     }
 }
