@@ -56,6 +56,9 @@ fn info_json_has_the_documented_keys() {
     assert_eq!(j["euler_characteristic"], 1);
     assert_eq!(j["valid"], true);
     assert!(j["peak_memory_bytes"].as_u64().unwrap() > 0);
+    let v = json_of(&["validate", grid.to_str().unwrap(), "--json"]);
+    assert_eq!((v["valid"].as_bool(), v["geometrically_valid"].as_bool()), (Some(true), Some(true)), "{v}");
+    assert_eq!((v["darts"].as_u64(), v["violations"].as_u64()), (Some(6 * 24), Some(0)));
 }
 
 #[test]

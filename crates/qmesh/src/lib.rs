@@ -17,4 +17,5 @@ pub mod query;
 mod random;
 pub mod render;
 pub mod replace;
+pub mod report;
 pub mod signature;

@@ -74,7 +74,7 @@ pub fn run(a: Args) -> Result<ExitCode> {
             "uncovered": super::patterns::uncovered_json(&rep.uncovered),
             "cell_types": {"hex": k.hex, "tet": k.tet, "prism": k.prism, "pyramid": k.pyramid, "other": k.other},
             "non_conformal_faces": nonconformal,
-            "scaled_jacobian": super::quality::by_kind_json(&quality),
+            "scaled_jacobian": qmesh::report::Summary::by_kind(&quality),
             "valid": valid,
             "query_seconds": rep.query_seconds,
             "replace_seconds": rep.replace_seconds,
@@ -97,7 +97,7 @@ pub fn run(a: Args) -> Result<ExitCode> {
             "{} hex, {} tet, {} prism, {} pyramid, {} other; non-conformal faces: {nonconformal}; valid: {valid}",
             k.hex, k.tet, k.prism, k.pyramid, k.other
         );
-        print!("{}", super::quality::by_kind_text(&quality));
+        print!("{}", qmesh::report::Summary::by_kind_text(&quality));
         println!(
             "query {:.3} s, replace {:.3} s, total {:.3} s; wrote {}",
             rep.query_seconds,

@@ -69,7 +69,7 @@ pub fn run(a: Args) -> Result<ExitCode> {
             "output": a.output.output.display().to_string(),
             "recombine": r,
             "cell_types": {"hex": kinds.hex, "tet": kinds.tet, "prism": kinds.prism, "pyramid": kinds.pyramid, "polyhedron": kinds.other},
-            "scaled_jacobian": super::quality::by_kind_json(&quality),
+            "scaled_jacobian": qmesh::report::Summary::by_kind(&quality),
             "valid": valid,
             "read_seconds": loaded.read_seconds,
             "build_seconds": loaded.build_seconds,
@@ -90,7 +90,7 @@ pub fn run(a: Args) -> Result<ExitCode> {
             100.0 * r.tets_left as f64 / r.tets_in.max(1) as f64,
             r.hex_tet_interfaces
         );
-        print!("{}", super::quality::by_kind_text(&quality));
+        print!("{}", qmesh::report::Summary::by_kind_text(&quality));
         println!(
             "read {:.3} s, build {:.3} s, query {:.3} s, select {:.3} s, replace {:.3} s, write {:.3} s; total {total:.3} s{}; wrote {}",
             loaded.read_seconds,

@@ -66,7 +66,7 @@ pub fn run(a: Args) -> Result<ExitCode> {
             "volumes_replaced": r.volumes_replaced,
             "unmatched_volumes": r.unmatched_volumes,
             "cell_types": {"hex": kinds.hex, "tet": kinds.tet, "prism": kinds.prism, "pyramid": kinds.pyramid, "other": kinds.other},
-            "scaled_jacobian": super::quality::by_kind_json(&quality),
+            "scaled_jacobian": qmesh::report::Summary::by_kind(&quality),
             "valid": valid,
             "query_seconds": r.query_seconds,
             "replace_seconds": r.replace_seconds,
@@ -82,7 +82,7 @@ pub fn run(a: Args) -> Result<ExitCode> {
             r.faces_replaced,
             r.volumes_replaced
         );
-        print!("{}", super::quality::by_kind_text(&quality));
+        print!("{}", qmesh::report::Summary::by_kind_text(&quality));
         println!(
             "query {:.3} s, replace {:.3} s; wrote {}",
             r.query_seconds,

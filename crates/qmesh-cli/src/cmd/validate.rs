@@ -3,8 +3,9 @@
 use std::process::ExitCode;
 
 use anyhow::Result;
-use qmesh::build::{BuildOptions, extract, tangled_cells};
+use qmesh::build::BuildOptions;
 use qmesh::io::load_map;
+use qmesh::report::ValidityReport;
 
 use super::{InputArgs, parse_format};
 
@@ -19,35 +20,40 @@ pub struct Args {
     /// cells. Without it they are warnings.
     #[arg(long)]
     pub strict: bool,
+    /// Print a JSON object (the same exit status).
+    #[arg(long)]
+    pub json: bool,
 }
 
 pub fn run(a: Args) -> Result<ExitCode> {
     let opts = BuildOptions { fix_orientation: a.input.fix_orientation };
     let loaded = load_map(&a.input.input, parse_format(&a.input.format)?, &opts)?;
-    let v = loaded.map.is_valid();
-    let r = &loaded.report;
-    let tangled = if loaded.map.dimension() == 3 { tangled_cells(&extract(&loaded.map).0) } else { 0 };
-    let inverted = r.inverted_cells - r.flipped_cells;
+    let r = ValidityReport::of(&a.input.input, &loaded, a.max);
+    let failed = !r.valid || (a.strict && !r.geometrically_valid);
+    let status = if failed { ExitCode::from(1) } else { ExitCode::SUCCESS };
+    if a.json {
+        println!("{}", serde_json::to_string_pretty(&r)?);
+        return Ok(status);
+    }
     let geometric = [
-        (inverted, "inverted (negative volume; --fix-orientation reverses their node order)"),
-        (tangled, "tangled (positive volume, negative corner Jacobian; no node order fixes them)"),
+        (r.inverted_cells, "inverted (negative volume; --fix-orientation reverses their node order)"),
+        (r.tangled_cells, "tangled (positive volume, negative corner Jacobian; no node order fixes them)"),
         (r.degenerate_cells, "degenerate (zero volume)"),
     ];
     for &(n, what) in geometric.iter().filter(|g| g.0 > 0) {
         eprintln!("{}: {n} cells {what}", if a.strict { "error" } else { "warning" });
     }
-    let defects = geometric.iter().any(|g| g.0 > 0);
-    if v.is_empty() {
-        let status = if defects { "combinatorially valid, geometrically defective" } else { "valid" };
-        println!("{}: {status} ({} darts)", a.input.input.display(), loaded.map.nb_darts());
-        return Ok(if defects && a.strict { ExitCode::from(1) } else { ExitCode::SUCCESS });
+    if r.valid {
+        let state = if r.geometrically_valid { "valid" } else { "combinatorially valid, geometrically defective" };
+        println!("{}: {state} ({} darts)", r.file, r.darts);
+        return Ok(status);
     }
-    println!("{}: INVALID, {} violations", a.input.input.display(), v.len());
-    for x in v.iter().take(a.max) {
+    println!("{}: INVALID, {} violations", r.file, r.violations);
+    for x in &r.problems {
         println!("  {x}");
     }
-    if v.len() > a.max {
-        println!("  … and {} more", v.len() - a.max);
+    if r.violations > r.problems.len() {
+        println!("  … and {} more", r.violations - r.problems.len());
     }
-    Ok(ExitCode::from(1))
+    Ok(status)
 }
