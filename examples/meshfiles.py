@@ -129,7 +129,7 @@ def write_polyhedra(path, title, coords, cells, labels=None):
         out.write(f"# vtk DataFile Version 2.0\n{title}\nASCII\nDATASET UNSTRUCTURED_GRID\n")
         out.write(f"POINTS {len(coords)} double\n")
         for p in coords:
-            out.write(" ".join(repr(round(c, 12)) for c in p) + "\n")
+            out.write(" ".join(repr(round(float(c), 12)) for c in p) + "\n")
         out.write(f"CELLS {len(streams)} {sum(len(s) + 1 for s in streams)}\n")
         for s in streams:
             out.write(" ".join(str(x) for x in [len(s)] + s) + "\n")
@@ -149,7 +149,7 @@ def write_medit_hexahedra(path, hexahedra, quads=(), hex_refs=None):
     with open(path, "w") as f:
         f.write("MeshVersionFormatted 2\nDimension 3\n")
         f.write(f"Vertices\n{len(pts.coords)}\n")
-        f.writelines(" ".join(repr(round(c, 12)) for c in p) + " 0\n" for p in pts.coords)
+        f.writelines(" ".join(repr(round(float(c), 12)) for c in p) + " 0\n" for p in pts.coords)
         if quads:
             f.write(f"Quadrilaterals\n{len(quads)}\n")
             f.writelines(" ".join(str(pts.id(c) + 1) for c in q) + f" {r}\n" for q, r in quads)

@@ -47,7 +47,7 @@ def surface_model(step, size, algorithm):
     gmsh.model.mesh.generate(2)
     tags, coords, _ = gmsh.model.mesh.getNodes()
     index = {t: i for i, t in enumerate(tags)}
-    points = [tuple(coords[3 * i: 3 * i + 3]) for i in range(len(tags))]
+    points = [tuple(float(c) for c in coords[3 * i: 3 * i + 3]) for i in range(len(tags))]
     parts, kinds, rings = [], [], []
     for dim, volume in gmsh.model.getEntities(3):
         faces, holed_faces = [], []
