@@ -11,7 +11,7 @@ use crate::replace::replace_cells;
 use crate::signature::Flags;
 
 /// What [`marching_cubes`] did.
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug, Default, serde::Serialize)]
 pub struct McReport {
     pub f_patterns: usize,
     pub v_patterns: usize,

@@ -39,7 +39,7 @@ impl Default for SubdivideOptions {
 }
 
 /// What [`subdivide`] did.
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug, Default, serde::Serialize)]
 pub struct SubdivideReport {
     pub volumes: usize,
     /// Cells per level, index = level.

@@ -31,7 +31,7 @@ impl Default for ReplaceOptions {
 }
 
 /// What [`query_replace`] did.
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug, Default, serde::Serialize)]
 pub struct ReplaceReport {
     pub edges_split: usize,
     /// Matches per pattern (indices of the set).
@@ -43,9 +43,11 @@ pub struct ReplaceReport {
     pub query_seconds: f64,
     pub replace_seconds: f64,
     /// Configurations no pattern matched (2022 §6.4 coverage), most frequent first.
+    #[serde(skip)]
     pub uncovered: Vec<Uncovered>,
     /// One dart of each volume a v-pattern created, with the pattern's index (for a
     /// `pattern_id` cell array; see [`crate::build::volume_values`]).
+    #[serde(skip)]
     pub created_volumes: Vec<(Dart, u32)>,
 }
 
