@@ -9,15 +9,18 @@ use std::time::Instant;
 use numpy::PyReadonlyArray3;
 use pyo3::prelude::*;
 use qmesh::apps::{
-    McFlags, RecombineOptions, SplitChoice, SubdivideOptions, TetrahedralizeOptions, marching_cubes_field,
-    mc_pattern_set, recombine as recombine_map, recombined_mesh, subdivide as subdivide_surface, tet_to_hex,
+    GeneratedKind, McFlags, RecombineOptions, SplitChoice, SubdivideOptions, TetrahedralizeOptions,
+    conformal as conformal_map, generated_pattern_set, marching_cubes_field, mc_pattern_set,
+    recombine as recombine_map, recombined_mesh, subdivide as subdivide_surface, tet_to_hex,
     tetrahedralize as split_hexes, triangulate,
 };
 use qmesh::build::{BuildOptions, IndexedMesh, build_surface_map, build_volume_map, count_cell_kinds, extract};
 use qmesh::geom::TriangleBvh;
 use qmesh::io::LoadedMap;
 use qmesh::modify::{load_rules, run_rules};
+use qmesh::pattern::{FlagRule, PatternSet, load_pattern_dir};
 use qmesh::query::Strategy;
+use qmesh::replace::{ReplaceOptions, query_replace};
 use qmesh::report::{InfoReport, QualityReport, ValidityReport};
 use serde_json::json;
 
@@ -26,7 +29,7 @@ use crate::raw_mesh::RawMesh;
 use crate::work::interruptible;
 
 /// The map of a mesh, with what building it reported, as `qmesh info` loads a file.
-fn load(mesh: &IndexedMesh, read_seconds: f64) -> Result<LoadedMap, String> {
+pub fn load(mesh: &IndexedMesh, read_seconds: f64) -> Result<LoadedMap, String> {
     let t = Instant::now();
     let built =
         if mesh.is_volume() { build_volume_map(mesh, &BuildOptions::default()) } else { build_surface_map(mesh) };
@@ -212,4 +215,66 @@ pub fn modify(py: Python<'_>, mesh: &RawMesh, rules: PathBuf) -> PyResult<(RawMe
         Ok((extract(&loaded.map).0, j.to_string()))
     })?;
     Ok((RawMesh::new(cells, "<memory>"), report))
+}
+
+/// The pattern folders (or files) `dirs` in one set, with the flag rule `flags`.
+fn pattern_set(dirs: &[PathBuf], flags: &str) -> Result<(PatternSet, FlagRule), String> {
+    let rule = match flags {
+        "corners" => FlagRule::Corners,
+        "geometric" => FlagRule::Geometric,
+        "file" => FlagRule::File,
+        "none" => FlagRule::None,
+        f => return Err(format!("unknown flags '{f}' (corners, geometric, file, none)")),
+    };
+    let mut set = PatternSet::default();
+    for dir in dirs {
+        if !dir.exists() {
+            return Err(format!("{}: no such pattern folder or file", dir.display()));
+        }
+        load_pattern_dir(dir, rule).patterns.into_iter().for_each(|p| {
+            set.insert(p);
+        });
+    }
+    Ok((set, rule))
+}
+
+/// 2022 query-replace with the patterns of `patterns` (folders or files), after
+/// splitting every edge into `split_edges` when given.
+#[pyfunction]
+#[pyo3(signature = (mesh, patterns, split_edges=None, flags="corners"))]
+pub fn replace(
+    py: Python<'_>,
+    mesh: &RawMesh,
+    patterns: Vec<PathBuf>,
+    split_edges: Option<usize>,
+    flags: &str,
+) -> PyResult<(RawMesh, String)> {
+    let (set, rule) = pattern_set(&patterns, flags).map_err(|e| value_error(py, e))?;
+    if set.patterns.is_empty() && split_edges.is_none() {
+        return Err(value_error(py, "no usable pattern in the given folders"));
+    }
+    let (cells, report) = on_map(py, mesh, move |mut loaded, _| {
+        let opts = ReplaceOptions { split_edges, flags: rule, use_signatures: true };
+        let r = query_replace(&mut loaded.map, &set, &opts).map_err(|e| e.to_string())?;
+        Ok((extract(&loaded.map).0, to_json(&r)?))
+    })?;
+    Ok((RawMesh::new(cells, "<memory>"), report))
+}
+
+/// Conformal 2:1 transitions (2022 Algorithm 7) of an octree mesh with hanging
+/// vertices, with qmesh's generated transitions or the patterns of `patterns`.
+#[pyfunction]
+#[pyo3(signature = (mesh, patterns=None))]
+pub fn conformal(py: Python<'_>, mesh: &RawMesh, patterns: Option<Vec<PathBuf>>) -> PyResult<(RawMesh, String)> {
+    let set = match patterns {
+        Some(dirs) => pattern_set(&dirs, "corners").map_err(|e| value_error(py, e))?.0,
+        None => generated_pattern_set(GeneratedKind::Transitions, FlagRule::Corners).map_err(|e| value_error(py, e))?,
+    };
+    let cells = Arc::clone(&mesh.mesh);
+    let result = interruptible(py, move || {
+        let (map, report) = conformal_map(&cells, &set, true).map_err(|e| e.to_string())?;
+        Ok::<_, String>((extract(&map).0, to_json(&report)?))
+    })?;
+    let (out, report) = result.map_err(|e| value_error(py, format!("{}: {e}", mesh.name)))?;
+    Ok((RawMesh::new(out, "<memory>"), report))
 }

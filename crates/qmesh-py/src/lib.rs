@@ -6,6 +6,7 @@ mod apps;
 mod errors;
 mod making;
 mod raw_mesh;
+mod rules;
 mod work;
 
 use pyo3::prelude::*;
@@ -25,5 +26,9 @@ fn _qmesh(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(apps::tetrahedralize, m)?)?;
     m.add_function(wrap_pyfunction!(apps::recombine, m)?)?;
     m.add_function(wrap_pyfunction!(apps::modify, m)?)?;
+    m.add_function(wrap_pyfunction!(apps::replace, m)?)?;
+    m.add_function(wrap_pyfunction!(apps::conformal, m)?)?;
+    m.add_function(wrap_pyfunction!(rules::query, m)?)?;
+    m.add_function(wrap_pyfunction!(rules::query_apply, m)?)?;
     Ok(())
 }

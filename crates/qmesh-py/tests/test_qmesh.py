@@ -139,6 +139,50 @@ def test_modify_runs_a_rule_file(tmp_path):
     assert len(edited.cells["hexahedron"]) == 96
 
 
+def test_query_and_query_apply_with_a_python_function(tmp_path):
+    boots = ROOT / "examples" / "boots"
+    subprocess.run([sys.executable, str(boots / "boots.py"), str(tmp_path)], check=True, capture_output=True)
+    figures = qmesh.read(tmp_path / "figures.vtk")
+    report, matches = figures.query(boots / "boots.toml")
+    assert report["rules"][0]["matches"] == 16 and len(matches[0]) == 16
+    assert all(m.dtype == np.int64 and len(m) == 2 for m in matches[0]), "a boot is two cells"
+    labels = np.concatenate(list(figures.cell_data["label"].values()))
+    assert set(labels[np.concatenate(matches[0])]) == {2}, "the matched cells are the boots (label 2)"
+    seen = []
+
+    def lift(points, cells):  # move every boot up by 10
+        seen.append((points.shape, len(cells)))
+        return points + [0.0, 0.0, 10.0]
+
+    lifted, report = figures.query_apply(boots / "boots.toml", lift)
+    assert report["rules"][0]["modified"] == 16 and report["valid"] and seen[0] == ((12, 3), 2)
+    assert np.isclose(lifted.points[:, 2].max() - figures.points[:, 2].max(), 10.0, atol=2.0)
+
+    def wrong(points, cells):
+        return np.zeros((2, 3))
+
+    with pytest.raises(ValueError, match="expected 12×3"):
+        figures.query_apply(boots / "boots.toml", wrong)
+
+    def failing(points, cells):
+        raise RuntimeError("no thanks")
+
+    with pytest.raises(RuntimeError, match="no thanks"):
+        figures.query_apply(boots / "boots.toml", failing)
+
+
+def test_replace_and_conformal():
+    tets, _ = grid(2).tetrahedralize(five=True)
+    hexes, report = tets.replace(data("patterns/cgal/tetra-to-hexa"), split_edges=2)
+    assert len(hexes.cells["hexahedron"]) == 4 * len(tets.cells["tetra"]) and hexes.validate()["valid"]
+    assert report["volumes_replaced"] == len(tets.cells["tetra"])
+    octree, _ = qmesh.read(data("surface/cube.off")).subdivide(levels=3)
+    conformal, report = octree.conformal()
+    assert conformal.validate()["valid"] and conformal.info()["non_conformal_faces"] == 0
+    with pytest.raises(qmesh.MeshValueError, match="no such pattern folder"):
+        tets.replace("/nowhere")
+
+
 def test_meshio_round_trip(tmp_path):
     meshio = pytest.importorskip("meshio")
     m = qmesh.read(data("tet/gmsh_sphere_tet.msh"))

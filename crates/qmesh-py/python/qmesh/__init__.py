@@ -148,6 +148,34 @@ class Mesh:
         validity)."""
         return _pair(_qmesh.modify(self._raw, str(rules)))
 
+    def query(self, rules):
+        """The matches each rule of a rule file selects (its strategy, max, separation),
+        without modifying: returns (report, matches) where matches[r] lists, for rule r,
+        one int array of cell indices per selected match."""
+        report, matches = _qmesh.query(self._raw, str(rules))
+        return _json.loads(report), [[_np.asarray(m, dtype=_np.int64) for m in per_rule] for per_rule in matches]
+
+    def query_apply(self, rules, function):
+        """Query-apply (2025 §6.4) with a Python function: each match a rule selects is
+        given to `function(points, cells)`, the k×3 positions of its vertices (in the
+        order of the query's labels) and the indices of its cells; it returns new k×3
+        positions, or None to leave the match as it is. Returns (mesh, report)."""
+        return _pair(_qmesh.query_apply(self._raw, str(rules), function))
+
+    def replace(self, patterns, split_edges=None, flags="corners"):
+        """2022 query-replace with the f- and v-patterns of the folders (or files)
+        `patterns`, after splitting every edge in `split_edges` when given; `flags`:
+        corners (the papers' rule), geometric, file or none. Returns (mesh, report)."""
+        if isinstance(patterns, (str, bytes)) or hasattr(patterns, "__fspath__"):
+            patterns = [patterns]
+        return _pair(_qmesh.replace(self._raw, [str(p) for p in patterns], split_edges, flags))
+
+    def conformal(self, patterns=None):
+        """Conformal 2:1 transitions (2022 Algorithm 7) of an octree mesh (as `subdivide`
+        makes), with qmesh's generated transitions or the pattern folders `patterns`.
+        Returns (mesh, report)."""
+        return _pair(_qmesh.conformal(self._raw, None if patterns is None else [str(p) for p in patterns]))
+
     # --- other libraries ----------------------------------------------------------
 
     def to_meshio(self):

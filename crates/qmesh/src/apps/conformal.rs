@@ -30,7 +30,7 @@ pub enum ConformalError {
 }
 
 /// What [`conformal`] did.
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug, Default, serde::Serialize)]
 pub struct ConformalReport {
     pub hanging: HangingReport,
     pub replace: ReplaceReport,

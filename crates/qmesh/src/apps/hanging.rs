@@ -8,7 +8,7 @@ use rustc_hash::FxHashMap;
 use crate::build::{CellKind, IndexedMesh};
 
 /// What [`insert_hanging_vertices`] found.
-#[derive(Clone, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Debug, Default, PartialEq, Eq, serde::Serialize)]
 pub struct HangingReport {
     /// Distinct vertices lying on another cell's edge or face.
     pub hanging_vertices: usize,

@@ -6,7 +6,7 @@ use super::recognise::standard_cell;
 use crate::cmap::{CMap3, Dart, Orbit, OrbitWalker};
 
 /// Counts of the cell kinds found by [`extract`].
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
 pub struct ExtractedKinds {
     pub tet: usize,
     pub pyramid: usize,
