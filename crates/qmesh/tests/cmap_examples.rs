@@ -270,11 +270,18 @@ fn validity_names_the_violation_and_its_darts_in_maps_over_65536_darts() {
     // 30×30×4 hexahedra: 86,400 darts, two parallel chunks of local checks.
     let (mut m, _) = build_volume_map(&qmesh::generate::hex_grid(30, 30, 4), &BuildOptions::default()).unwrap();
     assert!(m.dart_capacity() > 70_000 && m.is_valid().is_empty());
-    let d = m.darts().find(|d| d.raw() > 70_000).unwrap();
-    let e = m.beta(d, 2).unwrap();
-    m.unlink(d, 2);
-    let (lo, hi) = (d.raw().min(e.raw()), d.raw().max(e.raw()));
-    assert_eq!(m.is_valid(), vec![Violation::Beta2Free { dart: lo }, Violation::Beta2Free { dart: hi }]);
+    // One open edge in each chunk: each violation once, in dart order.
+    let mut expected = Vec::new();
+    let picked = [m.darts().find(|d| d.raw() > 70_000).unwrap(), m.darts().find(|d| d.raw() > 100).unwrap()];
+    for d in picked {
+        let e = m.beta(d, 2).unwrap();
+        m.unlink(d, 2);
+        expected.extend([d.raw(), e.raw()]);
+    }
+    expected.sort_unstable();
+    let lo = expected[2];
+    assert!(expected[1] < 65_536 && lo > 65_536, "{expected:?}");
+    assert_eq!(m.is_valid(), expected.iter().map(|&dart| Violation::Beta2Free { dart }).collect::<Vec<_>>());
     assert_eq!(
         Violation::Beta2Free { dart: lo }.to_string(),
         format!("dart {lo}: β2 is free in a volume map (open volume)")
@@ -320,4 +327,28 @@ fn local_violations_are_not_hidden_by_a_shared_vertex_id() {
     m.unlink(d, 2);
     let v = m.is_valid();
     assert!(!v.is_empty() && v.iter().all(|x| matches!(x, Violation::Beta2Free { .. })), "{v:?}");
+}
+
+#[test]
+fn a_free_beta1_and_a_broken_beta0_are_named_for_the_right_darts() {
+    use qmesh::cmap::Violation;
+    let mut m = CMap3::new();
+    let p: Vec<u32> =
+        [[0., 0., 0.], [1., 0., 0.], [0., 1., 0.], [0., 0., 1.]].iter().map(|&x| m.add_vertex(x)).collect();
+    let a = m.make_tetrahedron([p[0], p[1], p[2], p[3]]);
+    let (b, c) = (m.next(a), m.next(m.next(a)));
+    // β1 of a unlinked: a has β1 free (β0 set), b has β0 free (β1 set).
+    m.unlink(a, 1);
+    let v = m.is_valid();
+    assert!(v.contains(&Violation::Beta1Free { dart: a.raw() }), "{v:?}");
+    assert!(v.contains(&Violation::Beta1Free { dart: b.raw() }), "{v:?}");
+    m.link(a, 1, b);
+    assert!(m.is_valid().is_empty());
+    // a made a fixed point of β1: b keeps β0 = a although β1(a) ≠ b, and c keeps
+    // β1 = a although β0(a) ≠ c (for each, one of the two inverse checks fails).
+    m.link(a, 1, a);
+    let v = m.is_valid();
+    assert!(v.contains(&Violation::FixedPoint { dart: a.raw(), i: 1 }), "{v:?}");
+    assert!(v.contains(&Violation::Beta0NotInverse { dart: b.raw() }), "{v:?}");
+    assert!(v.contains(&Violation::Beta0NotInverse { dart: c.raw() }), "{v:?}");
 }
