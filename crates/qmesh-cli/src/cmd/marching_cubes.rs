@@ -158,6 +158,7 @@ pub fn run(a: Args) -> Result<ExitCode> {
             "input": source.display().to_string(),
             "output": a.output.output.display().to_string(),
             "hexahedra": hexes,
+            "cells_built": r.cells_built,
             "f_patterns": r.f_patterns,
             "flags": if flags == McFlags::Inside { "inside" } else { "corners" },
             "v_patterns": r.v_patterns,
@@ -176,8 +177,9 @@ pub fn run(a: Args) -> Result<ExitCode> {
         println!("{}", serde_json::to_string_pretty(&j)?);
     } else if !a.report.quiet {
         println!(
-            "{} hexahedra, {} f- and {} v-patterns: {} edges split, {} faces and {} cubes replaced ({} / {} unmatched)",
+            "{} hexahedra ({} built), {} f- and {} v-patterns: {} edges split, {} faces and {} cubes replaced ({} / {} unmatched)",
             hexes,
+            r.cells_built,
             r.f_patterns,
             r.v_patterns,
             r.edges_split,

@@ -21,6 +21,8 @@ pub struct McReport {
     pub unmatched_faces: usize,
     pub unmatched_volumes: usize,
     pub polygons: usize,
+    /// Hexahedra of the map marched: for a field, only the cells the surface crosses.
+    pub cells_built: usize,
     pub seconds: f64,
 }
 
@@ -162,6 +164,9 @@ pub fn triangulate(mesh: &IndexedMesh) -> IndexedMesh {
 /// Marching cubes of a scalar field sampled on a grid of `dims` points (unit spacing,
 /// value of point (i, j, k) at `(i·ny + j)·nz + k`): inside where value ≤ `iso`, new
 /// vertices at the linear interpolation of the crossing (kept off the grid points).
+/// Only the cells the surface crosses are built (the others hold no part of it: their
+/// faces with the crossed cells have no crossing edge), so time and memory follow the
+/// surface, not the grid.
 ///
 /// # Errors
 /// A value count that does not match `dims`, or dims below 2.
@@ -179,28 +184,83 @@ pub fn marching_cubes_field(
     if values.len() != nx * ny * nz {
         return Err(format!("{} values for a {nx}×{ny}×{nz} grid ({} expected)", values.len(), nx * ny * nz));
     }
-    let grid = crate::generate::hex_grid(nx - 1, ny - 1, nz - 1);
-    // hex_grid numbers point (i, j, k) as i + nx·(j + ny·k).
-    let value = |v: u32| {
-        let v = v as usize;
-        let (i, j, k) = (v % nx, v / nx % ny, v / (nx * ny));
-        f64::from(values[(i * ny + j) * nz + k])
-    };
-    let inside: Vec<bool> = (0..grid.points.len() as u32).map(|v| value(v) - iso <= 0.0).collect();
+    let value = |g: usize| f64::from(values[g]);
+    let band = crossed_cells(values, dims, iso);
+    if band.nb_cells() == 0 {
+        let r = McReport {
+            f_patterns: set.count(PatternKind::Face),
+            v_patterns: set.count(PatternKind::Volume),
+            ..Default::default()
+        };
+        return Ok((IndexedMesh::new(), r));
+    }
+    let cells_built = band.nb_cells();
     let (mut map, _) =
-        crate::build::build_map(grid, &crate::build::BuildOptions::default()).map_err(|e| e.to_string())?;
+        crate::build::build_map(band, &crate::build::BuildOptions::default()).map_err(|e| e.to_string())?;
+    // The grid point of every vertex, from its (integer) position: the builder gives a
+    // vertex where crossed cells meet only at a corner or an edge one id per side.
+    let grid_point: Vec<usize> = (0..map.nb_vertex_ids() as u32)
+        .map(|v| {
+            let [a, b, c] = map.position(v).map(|x| x as usize);
+            (a * ny + b) * nz + c
+        })
+        .collect();
+    let inside: Vec<bool> = grid_point.iter().map(|&g| value(g) - iso <= 0.0).collect();
     let crossing = |a: u32, b: u32| {
-        let (va, vb) = (value(a), value(b));
+        let (ga, gb) = (grid_point[a as usize], grid_point[b as usize]);
+        let (va, vb) = (value(ga), value(gb));
         let t = if vb != va { ((iso - va) / (vb - va)).clamp(1e-6, 1.0 - 1e-6) } else { 0.5 };
-        let (p, q) = (map_position(a, nx, ny), map_position(b, nx, ny));
+        let (p, q) = (grid_position(ga, ny, nz), grid_position(gb, ny, nz));
         [0, 1, 2].map(|k| p[k] + t * (q[k] - p[k]))
     };
-    marching_cubes(&mut map, &inside, &crossing, set, flags).map_err(|e| e.to_string())
+    let (surface, mut r) = marching_cubes(&mut map, &inside, &crossing, set, flags).map_err(|e| e.to_string())?;
+    r.cells_built = cells_built;
+    Ok((surface, r))
 }
 
-fn map_position(v: u32, nx: usize, ny: usize) -> [f64; 3] {
-    let v = v as usize;
-    [(v % nx) as f64, (v / nx % ny) as f64, (v / (nx * ny)) as f64]
+/// The hexahedra of the grid cells with corners on both sides of `iso` (corner order
+/// and cell order as [`crate::generate::hex_grid`]), on their own points placed at
+/// their grid coordinates.
+fn crossed_cells(values: &[f32], [nx, ny, nz]: [usize; 3], iso: f64) -> IndexedMesh {
+    let g = |i: usize, j: usize, k: usize| (i * ny + j) * nz + k;
+    let inside = |i: usize, j: usize, k: usize| f64::from(values[g(i, j, k)]) - iso <= 0.0;
+    let mut mesh = IndexedMesh::new();
+    let mut point_of = vec![u32::MAX; values.len()];
+    for k in 0..nz - 1 {
+        for j in 0..ny - 1 {
+            for i in 0..nx - 1 {
+                let corners = [
+                    (i, j, k),
+                    (i + 1, j, k),
+                    (i + 1, j + 1, k),
+                    (i, j + 1, k),
+                    (i, j, k + 1),
+                    (i + 1, j, k + 1),
+                    (i + 1, j + 1, k + 1),
+                    (i, j + 1, k + 1),
+                ];
+                let first = inside(i, j, k);
+                if corners.iter().all(|&(a, b, c)| inside(a, b, c) == first) {
+                    continue;
+                }
+                let nodes = corners.map(|(a, b, c)| {
+                    let p = g(a, b, c);
+                    if point_of[p] == u32::MAX {
+                        point_of[p] = mesh.points.len() as u32;
+                        mesh.points.push([a as f64, b as f64, c as f64]);
+                    }
+                    point_of[p]
+                });
+                mesh.push_cell(crate::build::CellKind::Hex, &nodes, None);
+            }
+        }
+    }
+    mesh
+}
+
+/// The position of grid point `g` (index `(i·ny + j)·nz + k`).
+fn grid_position(g: usize, ny: usize, nz: usize) -> [f64; 3] {
+    [(g / (ny * nz)) as f64, (g / nz % ny) as f64, (g % nz) as f64]
 }
 
 /// Marching cubes of a surface (2022 §7.2 on the hexahedra of §7.1): the 2:1 octree of
@@ -227,6 +287,7 @@ pub fn marching_cubes_surface(
         let (p, q) = (points[a as usize], points[b as usize]);
         [0, 1, 2].map(|k| 0.5 * (p[k] + q[k]))
     };
-    let (s, r) = marching_cubes(&mut map, &inside, &crossing, set, flags).map_err(|e| e.to_string())?;
+    let (s, mut r) = marching_cubes(&mut map, &inside, &crossing, set, flags).map_err(|e| e.to_string())?;
+    r.cells_built = tree.leaves.len();
     Ok((s, r, tree.leaves.len()))
 }
