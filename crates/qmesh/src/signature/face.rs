@@ -44,27 +44,29 @@ pub fn pattern_face_boundary(map: &CMap3, start: Dart) -> Option<Vec<Dart>> {
     if !map.is_free(start, 2) {
         return None;
     }
+    // (both walks are bounded by the number of darts: a broken map cannot hang them)
+    let limit = map.nb_darts();
     let mut cycle = vec![start];
-    let mut d = start;
-    loop {
-        let mut x = map.next(d);
-        let mut guard = 0;
-        while let Some(o) = map.beta(x, 2) {
-            x = map.next(o);
-            guard += 1;
-            if guard > map.nb_darts() {
-                return None;
-            }
-        }
+    for _ in 0..limit {
+        let x = next_free_around_tip(map, *cycle.last().expect("never empty"), limit)?;
         if x == start {
             return Some(cycle);
         }
-        if cycle.len() > map.nb_darts() {
-            return None;
-        }
         cycle.push(x);
-        d = x;
     }
+    None
+}
+
+/// The first 2-free dart met turning around the tip of `d` with β1∘β2.
+fn next_free_around_tip(map: &CMap3, d: Dart, limit: usize) -> Option<Dart> {
+    let mut x = map.next(d);
+    for _ in 0..limit {
+        match map.beta(x, 2) {
+            None => return Some(x),
+            Some(o) => x = map.next(o),
+        }
+    }
+    None
 }
 
 /// The f-signature of the boundary cycle of an f-pattern containing 2-free `start`.

@@ -39,9 +39,8 @@ thread_local! {
 fn with_labels<R>(map: &CMap3, f: impl FnOnce(&mut Vec<u32>) -> R) -> R {
     LABELS.with(|l| {
         let mut l = l.borrow_mut();
-        if l.len() < map.dart_capacity() {
-            l.resize(map.dart_capacity(), 0);
-        }
+        let len = l.len().max(map.dart_capacity());
+        l.resize(len, 0);
         f(&mut l)
     })
 }
