@@ -67,7 +67,19 @@ fn sphere_and_torus_have_their_topology() {
     let (s, r) = marching_cubes_field(&sphere, [n, n, n], 0.0, &mc_pattern_set(), McFlags::Inside).expect("sphere");
     assert_eq!((r.unmatched_faces, r.unmatched_volumes), (0, 0));
     assert_eq!(topology(&s), (0, 2));
-    assert_eq!(topology(&triangulate(&s)), (0, 2));
+    let tri = triangulate(&s);
+    assert_eq!(topology(&tri), (0, 2));
+    // Normals point out: the enclosed signed volume is the ball's (to 3 %), positive.
+    let volume: f64 = (0..tri.nb_polygons())
+        .map(|i| {
+            let [a, b, c] = [0, 1, 2].map(|k| tri.points[tri.polygon(i)[k] as usize]);
+            (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0])
+                + a[2] * (b[0] * c[1] - b[1] * c[0]))
+                / 6.0
+        })
+        .sum();
+    let ball = 4.0 / 3.0 * std::f64::consts::PI * 8.3f64.powi(3);
+    assert!((volume / ball - 1.0).abs() < 0.03, "enclosed volume {volume}, ball {ball}");
     let torus = field(n, |x, y, z| {
         let q = ((x - c).powi(2) + (y - c).powi(2)).sqrt() - 6.5;
         (q * q + (z - c).powi(2)).sqrt() - 2.7

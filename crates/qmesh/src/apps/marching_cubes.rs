@@ -110,10 +110,27 @@ fn surface_polygons(map: &CMap3, original: usize, inside: &[bool]) -> IndexedMes
         if cycle.iter().any(|&x| (map.vertex_of(x) as usize) < original) {
             continue;
         }
-        let outside_volume = w.collect(map, d, Orbit::Volume).iter().any(|&x| {
-            let v = map.vertex_of(x) as usize;
-            v < original && !inside.get(v).copied().unwrap_or(false)
+        let is_outside = |v: usize| v < original && !inside.get(v).copied().unwrap_or(false);
+        // The face across an edge of a cut, in the same volume, is the part of a cube
+        // face on that side of the cut: its original corners tell the side (no walk of
+        // the whole volume); the volume is walked only when that face has none.
+        let across = map.beta(d, 2).and_then(|e| {
+            let mut x = e;
+            loop {
+                let v = map.vertex_of(x) as usize;
+                if v < original {
+                    return Some(v);
+                }
+                x = map.next(x);
+                if x == e {
+                    return None;
+                }
+            }
         });
+        let outside_volume = match across {
+            Some(v) => is_outside(v),
+            None => w.collect(map, d, Orbit::Volume).iter().any(|&x| is_outside(map.vertex_of(x) as usize)),
+        };
         if !outside_volume {
             continue;
         }
