@@ -71,6 +71,11 @@ impl RawMesh {
         blocks
     }
 
+    /// The cells (or polygons) of block `name`, none if it has none.
+    fn members(&self, name: &str) -> Vec<usize> {
+        self.blocks().into_iter().find(|b| b.0 == name).map(|b| b.1).unwrap_or_default()
+    }
+
     fn nodes(&self, i: usize) -> &[u32] {
         if self.mesh.is_volume() { self.mesh.cell(i).1 } else { self.mesh.polygon(i) }
     }
@@ -111,15 +116,11 @@ impl RawMesh {
     #[getter]
     fn polyhedra<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyList>> {
         let out = PyList::empty(py);
-        for (name, members) in self.blocks() {
-            if name == "polyhedron" {
-                for i in members {
-                    // (the cell's faces come inward, as the map runs them)
-                    let mut faces = self.mesh.cell_faces(i).unwrap_or_default();
-                    faces.iter_mut().for_each(|f| f.reverse());
-                    out.append(faces)?;
-                }
-            }
+        for i in self.members("polyhedron") {
+            // (the cell's faces come inward, as the map runs them)
+            let mut faces = self.mesh.cell_faces(i).unwrap_or_default();
+            faces.iter_mut().for_each(|f| f.reverse());
+            out.append(faces)?;
         }
         Ok(out)
     }
@@ -128,12 +129,8 @@ impl RawMesh {
     #[getter]
     fn polygons<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyList>> {
         let out = PyList::empty(py);
-        for (name, members) in self.blocks() {
-            if name == "polygon" {
-                for i in members {
-                    out.append(self.nodes(i).to_vec())?;
-                }
-            }
+        for i in self.members("polygon") {
+            out.append(self.nodes(i).to_vec())?;
         }
         Ok(out)
     }
