@@ -177,13 +177,13 @@ pub fn tetrahedralize(py: Python<'_>, mesh: &RawMesh, seed: u64, five: bool) -> 
 
 /// Tetrahedra → hexahedra over every hexahedron subdivision (2025 §7.1).
 #[pyfunction]
-#[pyo3(signature = (mesh, strategy="best", min_quality=0.0, swaps=true, conformal=false))]
+#[pyo3(signature = (mesh, strategy="best", min_quality=0.0, repair_effort=1, conformal=false))]
 pub fn recombine(
     py: Python<'_>,
     mesh: &RawMesh,
     strategy: &str,
     min_quality: f64,
-    swaps: bool,
+    repair_effort: usize,
     conformal: bool,
 ) -> PyResult<(RawMesh, String)> {
     let strategy = match strategy {
@@ -192,7 +192,7 @@ pub fn recombine(
         s => return Err(value_error(py, format!("unknown strategy '{s}' (best, greedy)"))),
     };
     let (cells, report) = on_map(py, mesh, move |mut loaded, _| {
-        let (r, hexes) = recombine_map(&mut loaded.map, &RecombineOptions { strategy, min_quality, swaps })
+        let (r, hexes) = recombine_map(&mut loaded.map, &RecombineOptions { strategy, min_quality, repair_effort })
             .map_err(|e| e.to_string())?;
         let (cells, kinds) = recombined_mesh(&loaded.map, &hexes, conformal);
         let j = json!({

@@ -11,7 +11,7 @@ mod marching_cubes;
 mod mc_patterns;
 mod octree;
 mod recombine;
-mod recombine_swaps;
+mod recombine_repair;
 mod subdivide;
 mod tet2hex;
 mod tetrahedralize;
@@ -21,8 +21,8 @@ pub use conformal::{ConformalError, ConformalReport, conformal};
 pub use generated_patterns::{GeneratedKind, generated_pattern_meshes, generated_pattern_set};
 pub use hanging::{HangingError, HangingReport, insert_hanging_vertices};
 pub use hex_split::{
-    HEX_FACES, HexRule, HexRuleError, HexSplit, HexSplits, OrientedClass, SplitClass, hex_rules, split_query_mesh,
-    split_target_mesh,
+    HEX_FACES, HexRule, HexRuleError, HexSplit, HexSplits, HexTarget, OrientedClass, SplitClass, hex_rules,
+    split_query_mesh, split_target_mesh,
 };
 pub use marching_cubes::{
     McFlags, McReport, marching_cubes, marching_cubes_field, marching_cubes_surface, triangulate,

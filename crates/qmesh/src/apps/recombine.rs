@@ -11,25 +11,33 @@ use std::time::Instant;
 
 use rustc_hash::FxHashMap;
 
-use super::hex_split::{HexRule, HexRuleError, HexSplits, hex_rules};
-use super::recombine_swaps::improve_by_swaps;
+use super::hex_split::{HexRuleError, HexSplits, HexTarget, hex_rules};
+use super::recombine_repair::repair_leftovers;
 use crate::build::{CellKind, ExtractedKinds, IndexedMesh, classify_volume, extract_with, polyhedron_stream};
 use crate::cmap::{BitSet, CMap3, Dart, Orbit};
-use crate::modify::execute;
+use crate::modify::{Plan, execute};
 use crate::query::{MatchOptions, Metric, QuerySet, Strategy, find_matches, select};
 
-/// The rules and their prefix tree, built once per process.
+/// The rules' queries and their prefix tree, and their targets, built once per
+/// process; a target's modify plan is built the first time a match of it is replaced.
 struct RuleBook {
-    rules: Vec<HexRule>,
+    targets: Vec<HexTarget>,
     set: QuerySet,
+    plans: Vec<OnceLock<Result<Plan, HexRuleError>>>,
+}
+
+impl RuleBook {
+    fn plan(&self, rule: usize) -> Result<&Plan, &HexRuleError> {
+        self.plans[rule].get_or_init(|| self.targets[rule].plan(&self.set.queries[rule])).as_ref()
+    }
 }
 
 fn rule_book() -> Result<&'static RuleBook, &'static HexRuleError> {
     static BOOK: OnceLock<Result<RuleBook, HexRuleError>> = OnceLock::new();
     BOOK.get_or_init(|| {
-        let rules = hex_rules()?;
-        let set = QuerySet::new(rules.iter().map(|r| r.query.clone()).collect());
-        Ok(RuleBook { rules, set })
+        let (queries, targets): (Vec<_>, Vec<_>) = hex_rules()?.into_iter().map(|r| (r.query, r.target)).unzip();
+        let plans = targets.iter().map(|_| OnceLock::new()).collect();
+        Ok(RuleBook { targets, set: QuerySet::new(queries), plans })
     })
     .as_ref()
 }
@@ -41,13 +49,14 @@ pub struct RecombineOptions {
     pub strategy: Strategy,
     /// Matches whose hexahedron has a scaled Jacobian at or below this are dropped.
     pub min_quality: f64,
-    /// After the selection, exchange a hexahedron for two where tetrahedra are left.
-    pub swaps: bool,
+    /// After the selection, repair it where tetrahedra are left: search nodes per
+    /// candidate (0: keep the best-first selection as it is).
+    pub repair_effort: usize,
 }
 
 impl Default for RecombineOptions {
     fn default() -> Self {
-        RecombineOptions { strategy: Strategy::Best, min_quality: 0.0, swaps: true }
+        RecombineOptions { strategy: Strategy::Best, min_quality: 0.0, repair_effort: 1 }
     }
 }
 
@@ -75,8 +84,11 @@ pub struct RecombineReport {
     pub rules_seconds: f64,
     pub query_seconds: f64,
     pub select_seconds: f64,
-    /// Hexahedra exchanged for two (or added) after the selection.
-    pub swaps: usize,
+    /// Repairs of the selection where it left tetrahedra over (each drops some
+    /// hexahedra and takes more tetrahedra in others).
+    pub repairs: usize,
+    /// Tetrahedra left over by the selection that the repairs put in hexahedra.
+    pub repaired_tets: usize,
     pub replace_seconds: f64,
     pub quality_min: Option<f64>,
     pub quality_mean: Option<f64>,
@@ -119,7 +131,7 @@ pub fn recombine(
     let book = rule_book()?;
     let mut report = RecombineReport {
         tets_in: map.cells(Orbit::Volume).filter(|&d| classify_volume(map, d) == CellKind::Tet).count(),
-        queries: book.rules.len(),
+        queries: book.targets.len(),
         catalogue_seconds,
         rules_seconds: t.elapsed().as_secs_f64() - catalogue_seconds,
         ..Default::default()
@@ -139,8 +151,9 @@ pub fn recombine(
 
     let t = Instant::now();
     let mut chosen = select(map, &book.set, &candidates, opts.strategy, None);
-    if opts.swaps {
-        report.swaps = improve_by_swaps(map, &book.set, &candidates, &mut chosen);
+    if opts.repair_effort > 0 {
+        let repaired = repair_leftovers(map, &book.set, &candidates, &mut chosen, opts.repair_effort);
+        (report.repairs, report.repaired_tets) = (repaired.repairs, repaired.tets);
     }
     report.select_seconds = t.elapsed().as_secs_f64();
 
@@ -148,11 +161,11 @@ pub fn recombine(
     let mut out = Recombined::default();
     let mut qualities = Vec::with_capacity(chosen.len());
     for s in &chosen {
-        let rule = &book.rules[s.m.query as usize];
+        let rule = &book.targets[s.m.query as usize];
         out.corners.push(rule.corners.map(|l| map.vertex_of(s.darts[l as usize - 1])));
         out.darts.push(s.darts[rule.keep as usize - 1]);
         qualities.push(s.m.score);
-        execute(map, &rule.plan, &s.darts);
+        execute(map, book.plan(s.m.query as usize)?, &s.darts);
         let o = &splits.oriented[rule.oriented];
         *report.by_class.entry(o.class).or_insert(0) += 1;
         *report.by_tet_count.entry(o.tets.len()).or_insert(0) += 1;
@@ -162,14 +175,13 @@ pub fn recombine(
     // faces of the hexahedron on the other side.
     let mut diagonal = BitSet::with_len(map.dart_capacity());
     for s in &chosen {
-        for l in book.rules[s.m.query as usize].diagonals.iter().flatten() {
+        for l in book.targets[s.m.query as usize].diagonals.iter().flatten() {
             diagonal.insert(s.darts[*l as usize - 1].idx());
         }
     }
     let mut with_tet_faces = vec![false; chosen.len()];
     for (i, s) in chosen.iter().enumerate() {
-        let rule = &book.rules[s.m.query as usize];
-        for [a, _] in rule.diagonals {
+        for [a, _] in book.targets[s.m.query as usize].diagonals {
             let d = s.darts[a as usize - 1];
             if !map.is_live(d) {
                 continue; // removed from the other side

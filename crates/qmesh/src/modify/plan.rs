@@ -109,6 +109,14 @@ impl Plan {
             Operation::Replace => replace_plan(q, t),
         }
     }
+
+    /// The plan of [`Operation::Replace`], which leaves the query as it is.
+    ///
+    /// # Errors
+    /// As [`new`](Self::new).
+    pub fn replace(q: &Query, t: &CMap3) -> Result<Plan, ModifyError> {
+        replace_plan(q, t)
+    }
 }
 
 /// Index of each T vertex id among created vertices, or the label of a query dart

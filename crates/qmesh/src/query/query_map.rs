@@ -5,7 +5,7 @@ use super::automorphism::Automorphisms;
 use super::error::QueryError;
 use super::fit::AffineFit;
 use super::word::{Condition, Labelling, QueryWord};
-use crate::cmap::{CMap3, Dart};
+use crate::cmap::{CMap3, Dart, Orbit, OrbitWalker};
 use crate::geom::hex_scaled_jacobian;
 
 /// A query (2025 §5): a connected map, 1- and 2-sewn everywhere, with a boundary
@@ -111,6 +111,32 @@ impl Query {
     /// Number of volumes.
     pub fn nb_volumes(&self) -> usize {
         self.volumes.len()
+    }
+
+    /// The most faces a walk from the start dart's volume crosses to reach any other
+    /// volume of the query: every volume of a match lies within this many faces of
+    /// the volume of its start dart.
+    pub fn reach(&self) -> usize {
+        let mut walker = OrbitWalker::new();
+        let mut volume = vec![usize::MAX; self.map.dart_capacity()];
+        let firsts: Vec<Dart> = self.map.cells(Orbit::Volume).collect();
+        for (v, &d) in firsts.iter().enumerate() {
+            walker.collect(&self.map, d, Orbit::Volume).iter().for_each(|x| volume[x.idx()] = v);
+        }
+        let mut dist = vec![usize::MAX; firsts.len()];
+        let mut queue = std::collections::VecDeque::from([volume[self.labelling.darts[0].idx()]]);
+        dist[queue[0]] = 0;
+        while let Some(v) = queue.pop_front() {
+            for &d in walker.collect(&self.map, firsts[v], Orbit::Volume) {
+                if let Some(w) = self.map.beta(d, 3).map(|o| volume[o.idx()])
+                    && dist[w] == usize::MAX
+                {
+                    dist[w] = dist[v] + 1;
+                    queue.push_back(w);
+                }
+            }
+        }
+        dist.into_iter().max().unwrap_or(0)
     }
 
     /// Sum of the signed volumes of the matched input volumes (`matched[k-1]` = input

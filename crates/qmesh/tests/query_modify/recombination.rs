@@ -70,21 +70,26 @@ fn recombination_gives_back_the_original_hexahedra() {
     }
 }
 
-/// Known gap (issue 14): on distorted hexahedra split with any subdivision, best-first
-/// selection can take a well-shaped hexahedron made of halves of two others; the swaps
-/// recover some. This pins today's rate so a regression shows.
+/// On an unstructured hex mesh split with any subdivision, best-first selection takes
+/// well-shaped hexahedra made of parts of two others; the repair gives every original
+/// back, where the selection alone leaves tetrahedra.
 #[test]
-fn any_split_of_distorted_hexahedra_is_mostly_recovered() {
-    let grid = jittered_grid(4, 0.3);
-    for seed in 1..=3 {
-        let (tets, _) = tetrahedralize(&grid, &TetrahedralizeOptions { choice: SplitChoice::Any, seed }).unwrap();
+fn any_split_of_an_unstructured_hex_mesh_is_fully_recovered() {
+    let Some(dir) = crate::common::data_dir() else { return };
+    let path = dir.join("hex/gmsh_torus_hex_subdiv.mesh");
+    let qmesh::io::Loaded::Indexed(hexes) = qmesh::io::read(&path, None).unwrap() else { panic!("a cell mesh") };
+    for seed in 1..=2 {
+        let (tets, _) = tetrahedralize(&hexes, &TetrahedralizeOptions { choice: SplitChoice::Any, seed }).unwrap();
         let (mut map, _) = build_volume_map(&tets, &BuildOptions::default()).unwrap();
+        let mut plain = map.clone();
         let (r, made) = recombine(&mut map, &RecombineOptions::default()).unwrap();
         let (out, _) = recombined_mesh(&map, &made, false);
-        let original = hex_sets(&grid);
-        let back = hex_sets(&out).iter().filter(|h| original.binary_search(h).is_ok()).count();
-        assert!(back * 100 >= 90 * original.len(), "seed {seed}: {back} of {} ({r:?})", original.len());
+        assert_eq!(hex_sets(&out), hex_sets(&hexes), "seed {seed}: {r:?}");
         assert!(map.is_valid().is_empty());
+        let (p, _) = recombine(&mut plain, &RecombineOptions { repair_effort: 0, ..Default::default() }).unwrap();
+        assert_eq!(p.repairs, 0);
+        assert!(p.tets_left > 0, "seed {seed}: the selection alone recovers all: the test no longer shows the repair");
+        assert_eq!(p.tets_left, r.repaired_tets, "seed {seed}: what the repair recovered was left over");
     }
 }
 
@@ -96,7 +101,7 @@ fn every_realisable_class_is_found_in_its_own_geometry() {
     assert_eq!(rules.len(), s.oriented.iter().filter(|o| o.realization.is_some()).count());
     let opts = BuildOptions::default();
     for rule in &rules {
-        let o = &s.oriented[rule.oriented];
+        let o = &s.oriented[rule.target.oriented];
         let p = o.realization.unwrap();
         let (map, _) = build_volume_map(&split_query_mesh(&o.tets, &p), &opts).unwrap();
         let mut a = Annotator::new(rule.query.nb_darts());

@@ -31,7 +31,7 @@ use std::collections::BTreeMap;
 use std::sync::OnceLock;
 
 use crate::build::HEX_CORNER_BITS;
-pub use rules::{HexRule, HexRuleError, hex_rules, split_query_mesh, split_target_mesh};
+pub use rules::{HexRule, HexRuleError, HexTarget, hex_rules, split_query_mesh, split_target_mesh};
 
 /// One subdivision of the hexahedron with labelled corners.
 #[derive(Clone, Debug, PartialEq)]

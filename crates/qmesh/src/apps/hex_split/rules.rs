@@ -5,17 +5,24 @@
 
 use super::{HEX_FACES, HexSplits};
 use crate::build::{BuildError, BuildOptions, CellKind, IndexedMesh, build_volume_map};
-use crate::cmap::Dart;
-use crate::modify::{ModifyError, Operation, Plan};
+use crate::cmap::{CMap3, Dart};
+use crate::modify::{ModifyError, Plan};
 use crate::query::{Condition, Query, QueryError};
 
-/// One recombination rule.
+/// One recombination rule: its query and what replaces a match.
 #[derive(Clone, Debug)]
 pub struct HexRule {
+    pub query: Query,
+    pub target: HexTarget,
+}
+
+/// What replaces a match of a [`HexRule`]'s query: one hexahedron.
+#[derive(Clone, Debug)]
+pub struct HexTarget {
     /// Index in [`HexSplits::oriented`].
     pub oriented: usize,
-    pub query: Query,
-    pub plan: Plan,
+    /// The target map: one volume bounded by the query's 12 boundary triangles.
+    pub map: CMap3,
     /// Per VTK node, the label of a query dart at that node.
     pub corners: [u32; 8],
     /// Per face of [`HEX_FACES`], the labels of the two boundary darts along its
@@ -24,6 +31,18 @@ pub struct HexRule {
     /// A boundary dart on an edge of the hexahedron (not a diagonal): it stays in the
     /// hexahedron's volume whatever is merged later.
     pub keep: u32,
+}
+
+impl HexTarget {
+    /// The modify plan replacing a match of `query` (this target's) by the hexahedron.
+    /// Built on demand: a recombination needs the plans of the classes it uses only.
+    ///
+    /// # Errors
+    /// Only on a defect of the generated maps (never expected; tested).
+    pub fn plan(&self, query: &Query) -> Result<Plan, HexRuleError> {
+        Plan::replace(query, &self.map)
+            .map_err(|source| HexRuleError::Plan { class: HexSplits::get().oriented[self.oriented].class, source })
+    }
 }
 
 /// Why the rules could not be built (a defect of qmesh, reported rather than hidden).
@@ -120,8 +139,6 @@ fn rule_of(splits: &HexSplits, o: usize) -> Result<HexRule, HexRuleError> {
                 + 1
         });
         query.set_corners(corners);
-        let plan = Plan::new(Operation::Replace, &mut query, &tmap)
-            .map_err(|source| HexRuleError::Plan { class: err_class, source })?;
         let diagonals = HEX_FACES.map(|q| {
             let on = |d: Dart, a: u8, b: u8| {
                 let (u, v) = (query.map.vertex_of(d), query.map.vertex_of(query.map.next(d)));
@@ -137,7 +154,7 @@ fn rule_of(splits: &HexSplits, o: usize) -> Result<HexRule, HexRuleError> {
         });
         let on_diagonal = |l: u32| diagonals.iter().flatten().any(|&x| x == l);
         let keep = query.word.free_labels().map(|k| k as u32).find(|&k| !on_diagonal(k)).expect("hexahedron edges");
-        Ok(HexRule { oriented: o, query, plan, corners, diagonals, keep })
+        Ok(HexRule { query, target: HexTarget { oriented: o, map: tmap, corners, diagonals, keep } })
     }
 }
 
@@ -150,6 +167,7 @@ mod tests {
         let splits = HexSplits::get();
         let rules = hex_rules().unwrap();
         assert_eq!(rules.len(), splits.oriented.iter().filter(|o| o.realization.is_some()).count());
+        let plans: Vec<Plan> = rules.iter().map(|r| r.target.plan(&r.query).unwrap()).collect();
         // Canonical words are a complete invariant of connected maps: two rules share a
         // word only when one complex of tetrahedra is a hexahedron in two ways (other
         // corners), and then both readings must stay (they score differently).
@@ -158,19 +176,20 @@ mod tests {
         for same in by_word.values().filter(|v| v.len() > 1) {
             assert_eq!(same.len(), 2);
             // Same labels, other corners: the same darts read as another hexahedron.
-            assert_ne!(same[0].corners, same[1].corners, "a duplicate rule");
-            assert_eq!(splits.oriented[same[0].oriented].tets.len(), splits.oriented[same[1].oriented].tets.len());
+            let (a, b) = (&same[0].target, &same[1].target);
+            assert_ne!(a.corners, b.corners, "a duplicate rule");
+            assert_eq!(splits.oriented[a.oriented].tets.len(), splits.oriented[b.oriented].tets.len());
         }
         assert_eq!(by_word.len(), rules.len() - 10, "330 rules, 320 distinct words");
-        for r in &rules {
-            let tets = splits.oriented[r.oriented].tets.len();
+        for (r, plan) in rules.iter().zip(&plans) {
+            let tets = splits.oriented[r.target.oriented].tets.len();
             assert_eq!(r.query.nb_darts(), 12 * tets);
             assert_eq!(r.query.nb_volumes(), tets);
             assert!(r.query.map.is_valid().is_empty());
             // The 36 boundary darts stay (the hexahedron's), the others go.
-            assert_eq!(r.plan.darts_removed(), 12 * tets - 36, "{}", r.query.name);
-            assert_eq!(r.plan.darts_added(), 0);
-            for (f, d) in r.diagonals.iter().enumerate() {
+            assert_eq!(plan.darts_removed(), 12 * tets - 36, "{}", r.query.name);
+            assert_eq!(plan.darts_added(), 0);
+            for (f, d) in r.target.diagonals.iter().enumerate() {
                 let q = HEX_FACES[f];
                 let v = |l: u32| r.query.map.vertex_of(r.query.labelling.darts[l as usize - 1]);
                 for &l in d {
