@@ -177,13 +177,13 @@ pub fn tetrahedralize(py: Python<'_>, mesh: &RawMesh, seed: u64, five: bool) -> 
 
 /// Tetrahedra → hexahedra over every hexahedron subdivision (2025 §7.1).
 #[pyfunction]
-#[pyo3(signature = (mesh, strategy="best", min_quality=0.0, repair_effort=1, conformal=false))]
+#[pyo3(signature = (mesh, strategy="best", min_quality=0.0, repair_effort=0.25, conformal=false))]
 pub fn recombine(
     py: Python<'_>,
     mesh: &RawMesh,
     strategy: &str,
     min_quality: f64,
-    repair_effort: usize,
+    repair_effort: f64,
     conformal: bool,
 ) -> PyResult<(RawMesh, String)> {
     let strategy = match strategy {

@@ -30,10 +30,11 @@ pub struct Args {
     #[arg(long)]
     pub conformal: bool,
     /// Effort spent repairing the best-first selection where it leaves tetrahedra,
-    /// in search nodes per candidate (0: keep the selection as it is). More finds
-    /// more hexahedra on real meshes, in proportionally more time.
-    #[arg(long, default_value_t = 1)]
-    pub repair_effort: usize,
+    /// in search nodes per candidate (0: keep the selection as it is). Synthetic
+    /// meshes need far less than the default; on real meshes more finds more
+    /// hexahedra in more time (HexMe torus: 0.25 → 18.8 % tets left, 1 → 15.4 %).
+    #[arg(long, default_value_t = 0.25)]
+    pub repair_effort: f64,
     /// Worker threads for matching (default: all cores).
     #[arg(long)]
     pub threads: Option<usize>,

@@ -136,7 +136,7 @@ class Mesh:
         splits where possible (`five`). Returns (mesh, report)."""
         return _pair(_qmesh.tetrahedralize(self._raw, seed, five))
 
-    def recombine(self, strategy="best", min_quality=0.0, repair_effort=1, conformal=False):
+    def recombine(self, strategy="best", min_quality=0.0, repair_effort=0.25, conformal=False):
         """Tetrahedra → hexahedra over every subdivision of the hexahedron (2025 §7.1).
         Returns (mesh, report)."""
         return _pair(_qmesh.recombine(self._raw, strategy, min_quality, repair_effort, conformal))

@@ -50,13 +50,13 @@ pub struct RecombineOptions {
     /// Matches whose hexahedron has a scaled Jacobian at or below this are dropped.
     pub min_quality: f64,
     /// After the selection, repair it where tetrahedra are left: search nodes per
-    /// candidate (0: keep the best-first selection as it is).
-    pub repair_effort: usize,
+    /// candidate in all (0: keep the best-first selection as it is; default 0.25).
+    pub repair_effort: f64,
 }
 
 impl Default for RecombineOptions {
     fn default() -> Self {
-        RecombineOptions { strategy: Strategy::Best, min_quality: 0.0, repair_effort: 1 }
+        RecombineOptions { strategy: Strategy::Best, min_quality: 0.0, repair_effort: 0.25 }
     }
 }
 
@@ -151,7 +151,7 @@ pub fn recombine(
 
     let t = Instant::now();
     let mut chosen = select(map, &book.set, &candidates, opts.strategy, None);
-    if opts.repair_effort > 0 {
+    if opts.repair_effort > 0.0 {
         let repaired = repair_leftovers(map, &book.set, &candidates, &mut chosen, opts.repair_effort);
         (report.repairs, report.repaired_tets) = (repaired.repairs, repaired.tets);
     }

@@ -88,6 +88,10 @@ struct Repair<'a> {
     /// (`FREE`: not looked at): their count, then the sorted volumes.
     cand_at: Vec<u32>,
     arena: Vec<u32>,
+    /// Whether the candidates starting in each volume are in `by_volume`.
+    indexed: Vec<bool>,
+    /// Candidates by the volumes they contain, for the start volumes indexed so far.
+    by_volume: Vec<Vec<u32>>,
     /// Where the candidates containing each volume looked at are in `cont_arena`.
     containing: FxHashMap<u32, (u32, u32)>,
     cont_arena: Vec<u32>,
@@ -101,6 +105,8 @@ struct Repair<'a> {
     nodes: usize,
     node_limit: usize,
     drop_limit: usize,
+    /// Whether the drop limit turned a candidate down in the current search.
+    limited: std::cell::Cell<bool>,
 }
 
 impl Repair<'_> {
@@ -151,15 +157,22 @@ impl Repair<'_> {
             }
             layer = next..ball.len();
         }
-        let mut out = Vec::new();
+        // Every candidate containing v starts in the ball: index the candidates of
+        // each start volume there by their volumes (once per start volume), and the
+        // list of v is complete.
         for u in ball {
+            if std::mem::replace(&mut self.indexed[u as usize], true) {
+                continue;
+            }
             for k in self.start_offsets[u as usize]..self.start_offsets[u as usize + 1] {
                 let c = self.by_start[k as usize];
-                if self.cand_vols(c).contains(&v) {
-                    out.push(c);
+                for i in 0..self.cand_vols(c).len() {
+                    let w = self.known_vols(c)[i];
+                    self.by_volume[w as usize].push(c);
                 }
             }
         }
+        let mut out = std::mem::take(&mut self.by_volume[v as usize]);
         let score = |c: &u32| self.candidates[*c as usize].score;
         out.sort_unstable_by(|a, b| score(b).total_cmp(&score(a)).then(a.cmp(b)));
         let a = self.cont_arena.len();
@@ -185,6 +198,7 @@ impl Repair<'_> {
                 h if drops.contains(&h) => {}
                 h => {
                     if drops.len() == room {
+                        self.limited.set(true);
                         return None;
                     }
                     drops.push(h);
@@ -321,7 +335,7 @@ pub(crate) fn repair_leftovers(
     set: &QuerySet,
     candidates: &[Match],
     chosen: &mut Vec<Selected>,
-    effort: usize,
+    effort: f64,
 ) -> Repaired {
     let covered: usize = chosen.iter().map(|s| set.queries[s.m.query as usize].nb_volumes()).sum();
     let tets = map.cells(Orbit::Volume).count();
@@ -361,6 +375,8 @@ pub(crate) fn repair_leftovers(
         arena: Vec::new(),
         containing: FxHashMap::default(),
         cont_arena: Vec::new(),
+        indexed: vec![false; nv],
+        by_volume: vec![Vec::new(); nv],
         annot: set.annotator(),
         added: Vec::new(),
         dropped: Vec::new(),
@@ -369,6 +385,7 @@ pub(crate) fn repair_leftovers(
         nodes: 0,
         node_limit: 0,
         drop_limit: 0,
+        limited: std::cell::Cell::new(false),
     };
     r.hex_vols = chosen.iter().map(|s| r.vols_of_darts(&s.darts)).collect();
     for (h, vs) in r.hex_vols.iter().enumerate() {
@@ -376,10 +393,12 @@ pub(crate) fn repair_leftovers(
     }
     let mut slots: Vec<Option<Selected>> = chosen.drain(..).map(Some).collect();
     let mut done = Repaired { repairs: 0, tets: 0 };
-    let mut pass_nodes = effort * candidates.len();
+    let mut pass_nodes = (effort * candidates.len() as f64) as usize;
+    // Leftovers whose search failed with neither bound reached: no deeper search helps.
+    let mut hopeless = vec![false; nv];
     'deepen: for drop_limit in DROPS {
         for v0 in 0..nv as u32 {
-            if r.owner[v0 as usize] != FREE {
+            if r.owner[v0 as usize] != FREE || hopeless[v0 as usize] {
                 continue;
             }
             if pass_nodes == 0 {
@@ -387,8 +406,10 @@ pub(crate) fn repair_leftovers(
             }
             (r.nodes, r.node_limit, r.drop_limit) = (0, NODES.min(pass_nodes), drop_limit);
             r.debt.push(v0);
+            r.limited.set(false);
             let found = r.search();
             pass_nodes -= r.nodes;
+            hopeless[v0 as usize] = !found && !r.limited.get() && r.nodes < r.node_limit;
             if found {
                 done.tets += r.apply(&mut slots);
                 done.repairs += 1;

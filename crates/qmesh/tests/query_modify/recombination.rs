@@ -86,7 +86,7 @@ fn any_split_of_an_unstructured_hex_mesh_is_fully_recovered() {
         let (out, _) = recombined_mesh(&map, &made, false);
         assert_eq!(hex_sets(&out), hex_sets(&hexes), "seed {seed}: {r:?}");
         assert!(map.is_valid().is_empty());
-        let (p, _) = recombine(&mut plain, &RecombineOptions { repair_effort: 0, ..Default::default() }).unwrap();
+        let (p, _) = recombine(&mut plain, &RecombineOptions { repair_effort: 0.0, ..Default::default() }).unwrap();
         assert_eq!(p.repairs, 0);
         assert!(p.tets_left > 0, "seed {seed}: the selection alone recovers all: the test no longer shows the repair");
         assert_eq!(p.tets_left, r.repaired_tets, "seed {seed}: what the repair recovered was left over");
