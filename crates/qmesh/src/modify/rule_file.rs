@@ -176,7 +176,7 @@ pub fn parse_rules(path: &Path, text: &str) -> Result<Vec<Rule>, RuleError> {
             if !(0.0..=1.0).contains(&r) {
                 return Err(err(at, Some("max_residual"), format!("{r} is not a relative residual in 0..1")));
             }
-            if query.fit.is_none() {
+            if !query.has_affine_fit() {
                 return Err(err(at, Some("max_residual"), "the query's vertices do not span 3D: no affine fit".into()));
             }
         }

@@ -27,6 +27,55 @@ pub struct Automorphisms {
     others: Vec<Permutation>,
 }
 
+/// A per-dart invariant of every automorphism: the sizes of the ⟨β2, β3⟩ orbits (the
+/// edges' incidences) of the dart's face edges, from the dart on, and whether it is
+/// 3-free. An automorphism commutes with every β, so it can only map a start dart to
+/// one with the same signature; on tetrahedral queries (alike everywhere at first
+/// sight) this rejects almost every other start before an annotation.
+struct EdgeSignatures {
+    /// Per raw dart index: the ⟨β2, β3⟩ orbit size of its edge.
+    edge_size: Vec<u32>,
+}
+
+impl EdgeSignatures {
+    fn of(map: &CMap3, labelling: &Labelling) -> EdgeSignatures {
+        let mut edge_size = vec![0u32; map.dart_capacity()];
+        for &d in &labelling.darts {
+            edge_size[d.idx()] = Self::edge_orbit_size(map, d);
+        }
+        EdgeSignatures { edge_size }
+    }
+
+    /// Darts of the ⟨β2, β3⟩ orbit of `d`: a cycle or a path alternating β2 and β3.
+    fn edge_orbit_size(map: &CMap3, d: Dart) -> u32 {
+        let mut n = 1;
+        for first in [2, 3] {
+            let (mut x, mut i) = (d, first);
+            while let Some(y) = map.beta(x, i) {
+                if y == d {
+                    return n; // a cycle: every dart counted once
+                }
+                (x, i, n) = (y, 5 - i, n + 1);
+            }
+        }
+        n
+    }
+
+    /// Whether `a` and `b` have the same signature.
+    fn same(&self, a: Dart, b: Dart, map: &CMap3) -> bool {
+        let (mut x, mut y) = (a, b);
+        loop {
+            if self.edge_size[x.idx()] != self.edge_size[y.idx()] {
+                return false;
+            }
+            (x, y) = (map.next(x), map.next(y));
+            if x == a || y == b {
+                return x == a && y == b && map.is_free(a, 3) == map.is_free(b, 3);
+            }
+        }
+    }
+}
+
 impl Automorphisms {
     /// All automorphisms of the query `map` labelled by `labelling` with word `word`.
     pub fn of(map: &CMap3, labelling: &Labelling, word: &QueryWord) -> Automorphisms {
@@ -37,11 +86,15 @@ impl Automorphisms {
         }
         let strict = word.with_all_conditions(Condition::Boundary);
         let start = labelling.darts[0];
+        let signature = EdgeSignatures::of(map, labelling);
         let mut others = Vec::new();
         ANNOTATOR.with_borrow_mut(|a| {
             a.reserve(word.nb_darts());
             for &s in &labelling.darts {
-                if s == start || !a.annotate(map, &strict, s, None) {
+                if s == start || !signature.same(s, start, map) {
+                    continue;
+                }
+                if !a.annotate(map, &strict, s, None) {
                     continue;
                 }
                 let image: Vec<u32> = a.matched_raw().iter().map(|&d| labelling.label[d as usize]).collect();

@@ -166,7 +166,8 @@ pub(crate) fn matches_at(
         }
         if opts.all_automorphisms || query.automorphisms.is_canonical(map, &query.word, a) {
             let mut start = start;
-            if let Some(fit) = query.fit.as_ref().filter(|_| query.orient_by_geometry || query.max_residual.is_some()) {
+            if let Some(fit) = (query.orient_by_geometry || query.max_residual.is_some()).then(|| query.fit()).flatten()
+            {
                 let (s, residual) = query.automorphisms.best_image(map, &query.word, fit, a);
                 if query.max_residual.is_some_and(|limit| residual > limit) {
                     return;

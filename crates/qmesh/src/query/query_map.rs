@@ -7,6 +7,7 @@ use super::fit::AffineFit;
 use super::word::{Condition, Labelling, QueryWord};
 use crate::cmap::{CMap3, Dart, Orbit, OrbitWalker};
 use crate::geom::hex_scaled_jacobian;
+use std::sync::OnceLock;
 
 /// A query (2025 §5): a connected map, 1- and 2-sewn everywhere, with a boundary
 /// condition on each 3-free dart.
@@ -17,8 +18,8 @@ pub struct Query {
     pub labelling: Labelling,
     pub word: QueryWord,
     pub automorphisms: Automorphisms,
-    /// Faces of each volume as cycles of labels (volume metric).
-    volumes: Vec<Vec<Vec<u32>>>,
+    /// Faces of each volume as cycles of labels (volume metric), computed on first use.
+    volumes: OnceLock<Vec<Vec<Vec<u32>>>>,
     /// Labels of darts at the 8 extreme corners in VTK hexahedron order, when the
     /// query's own geometry spans a positive hexahedron (hex-quality metric).
     pub corners: Option<[u32; 8]>,
@@ -28,7 +29,8 @@ pub struct Query {
     /// Reject matches whose best affine fit from the query leaves a relative residual
     /// above this (0 = an affine copy of the query; see `fit.rs`).
     pub max_residual: Option<f64>,
-    pub(crate) fit: Option<AffineFit>,
+    /// The affine-fit data, computed on first use (most rule books never need it).
+    fit: OnceLock<Option<AffineFit>>,
 }
 
 impl Query {
@@ -53,29 +55,39 @@ impl Query {
         start: Dart,
         condition: impl FnMut(Dart) -> Condition,
     ) -> Result<Query, QueryError> {
+        if let Some(v) = map.is_valid().first() {
+            return Err(QueryError::Invalid(v.to_string()));
+        }
+        Self::from_valid_start(name, map, start, condition)
+    }
+
+    /// As [`from_start`](Self::from_start) without checking the map's validity: for the
+    /// maps qmesh builds itself (rule books of hundreds of queries), whose validity
+    /// their tests assert.
+    pub(crate) fn from_valid_start(
+        name: &str,
+        map: CMap3,
+        start: Dart,
+        condition: impl FnMut(Dart) -> Condition,
+    ) -> Result<Query, QueryError> {
         if map.nb_darts() > super::MAX_QUERY_DARTS {
             return Err(QueryError::TooLarge(map.nb_darts()));
         }
         let labelling = Labelling::new(&map, start)?;
-        if let Some(v) = map.is_valid().first() {
-            return Err(QueryError::Invalid(v.to_string()));
-        }
         let word = QueryWord::new(&map, &labelling, condition);
         let automorphisms = Automorphisms::of(&map, &labelling, &word);
-        let volumes = volume_faces(&map, &labelling);
         let corners = hex_corners(&map, &labelling);
-        let fit = vertex_fit(&map, &labelling);
         Ok(Query {
             name: name.to_string(),
             map,
             labelling,
             word,
             automorphisms,
-            volumes,
+            volumes: OnceLock::new(),
             corners,
             orient_by_geometry: false,
             max_residual: None,
-            fit,
+            fit: OnceLock::new(),
         })
     }
 
@@ -100,7 +112,17 @@ impl Query {
     /// Whether the query's vertices span 3D, so that matches can be compared with it by
     /// an affine fit (`orient_by_geometry`, `max_residual`).
     pub fn has_affine_fit(&self) -> bool {
-        self.fit.is_some()
+        self.fit().is_some()
+    }
+
+    /// The affine-fit data of the query's vertices, None when they do not span 3D.
+    pub(crate) fn fit(&self) -> Option<&AffineFit> {
+        self.fit.get_or_init(|| vertex_fit(&self.map, &self.labelling)).as_ref()
+    }
+
+    /// Faces of each volume as cycles of labels.
+    fn volumes(&self) -> &[Vec<Vec<u32>>] {
+        self.volumes.get_or_init(|| volume_faces(&self.map, &self.labelling))
     }
 
     /// Number of darts.
@@ -110,7 +132,7 @@ impl Query {
 
     /// Number of volumes.
     pub fn nb_volumes(&self) -> usize {
-        self.volumes.len()
+        self.volumes().len()
     }
 
     /// The most faces a walk from the start dart's volume crosses to reach any other
@@ -144,7 +166,7 @@ impl Query {
     pub fn matched_volume(&self, map: &CMap3, matched: &[u32]) -> f64 {
         let p = |l: u32| map.position(map.vertex_of(Dart::from_raw(matched[l as usize - 1]).expect("matched dart")));
         let mut total = 0.0;
-        for faces in &self.volumes {
+        for faces in self.volumes() {
             for f in faces {
                 let a = p(f[0]);
                 for w in f[1..].windows(2) {
@@ -224,11 +246,21 @@ fn hex_corners(map: &CMap3, l: &Labelling) -> Option<[u32; 8]> {
     ];
     let pts: Vec<[f64; 3]> = l.darts.iter().map(|&d| map.point(d)).collect();
     let c = crate::geom::centroid(pts.iter().copied());
+    // The first dart (smallest label) at each vertex: the candidates in label order.
+    let mut seen = rustc_hash::FxHashSet::default();
+    let firsts: Vec<usize> = (0..pts.len()).filter(|&a| seen.insert(map.vertex_of(l.darts[a]))).collect();
     let mut corners = [0u32; 8];
     let mut ids = [0u32; 8];
     for (i, s) in SIGNS.iter().enumerate() {
-        let best = (0..pts.len())
-            .max_by(|&a, &b| dot(sub(pts[a], c), *s).total_cmp(&dot(sub(pts[b], c), *s)).then(b.cmp(&a)))?;
+        // The first dart (smallest label) of largest extent along `s`.
+        let mut best = (0, f64::NEG_INFINITY);
+        for &a in &firsts {
+            let x = dot(sub(pts[a], c), *s);
+            if x.total_cmp(&best.1).is_gt() {
+                best = (a, x);
+            }
+        }
+        let best = best.0;
         corners[i] = best as u32 + 1;
         ids[i] = map.vertex_of(l.darts[best]);
     }

@@ -21,8 +21,6 @@ pub struct HexRule {
 pub struct HexTarget {
     /// Index in [`HexSplits::oriented`].
     pub oriented: usize,
-    /// The target map: one volume bounded by the query's 12 boundary triangles.
-    pub map: CMap3,
     /// Per VTK node, the label of a query dart at that node.
     pub corners: [u32; 8],
     /// Per face of [`HEX_FACES`], the labels of the two boundary darts along its
@@ -34,13 +32,27 @@ pub struct HexTarget {
 }
 
 impl HexTarget {
+    /// The target map: one volume bounded by the query's 12 boundary triangles, on the
+    /// class's realisation.
+    ///
+    /// # Errors
+    /// Only on a defect of the generated maps (never expected; tested).
+    pub fn map(&self) -> Result<CMap3, HexRuleError> {
+        let class = &HexSplits::get().oriented[self.oriented];
+        let points = class.realization.expect("only realised classes get rules");
+        build_volume_map(&split_target_mesh(&class.tets, &points), &BuildOptions::default())
+            .map(|(map, _)| map)
+            .map_err(|source| HexRuleError::Build { class: class.class, source })
+    }
+
     /// The modify plan replacing a match of `query` (this target's) by the hexahedron.
-    /// Built on demand: a recombination needs the plans of the classes it uses only.
+    /// Built on demand, with the target map: a recombination needs the plans of the
+    /// classes it uses only.
     ///
     /// # Errors
     /// Only on a defect of the generated maps (never expected; tested).
     pub fn plan(&self, query: &Query) -> Result<Plan, HexRuleError> {
-        Plan::replace(query, &self.map)
+        Plan::replace(query, &self.map()?)
             .map_err(|source| HexRuleError::Plan { class: HexSplits::get().oriented[self.oriented].class, source })
     }
 }
@@ -128,10 +140,8 @@ fn rule_of(splits: &HexSplits, o: usize) -> Result<HexRule, HexRuleError> {
         let opts = BuildOptions::default();
         let (qmap, _) = build_volume_map(&split_query_mesh(&class.tets, &points), &opts)
             .map_err(|source| HexRuleError::Build { class: err_class, source })?;
-        let (tmap, _) = build_volume_map(&split_target_mesh(&class.tets, &points), &opts)
-            .map_err(|source| HexRuleError::Build { class: err_class, source })?;
         let start = class.query_start.and_then(Dart::from_raw).expect("realised classes have a start");
-        let mut query = Query::from_start(&format!("hex-split-{o}"), qmap, start, |_| Condition::NoConnection)
+        let mut query = Query::from_valid_start(&format!("hex-split-{o}"), qmap, start, |_| Condition::NoConnection)
             .map_err(|source| HexRuleError::Query { class: err_class, source })?;
         let corners: [u32; 8] = std::array::from_fn(|i| {
             query.labelling.darts.iter().position(|&d| query.map.vertex_of(d) == i as u32).expect("every node is used")
@@ -154,7 +164,7 @@ fn rule_of(splits: &HexSplits, o: usize) -> Result<HexRule, HexRuleError> {
         });
         let on_diagonal = |l: u32| diagonals.iter().flatten().any(|&x| x == l);
         let keep = query.word.free_labels().map(|k| k as u32).find(|&k| !on_diagonal(k)).expect("hexahedron edges");
-        Ok(HexRule { query, target: HexTarget { oriented: o, map: tmap, corners, diagonals, keep } })
+        Ok(HexRule { query, target: HexTarget { oriented: o, corners, diagonals, keep } })
     }
 }
 
