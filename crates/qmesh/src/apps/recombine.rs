@@ -12,11 +12,11 @@ use std::time::Instant;
 use rustc_hash::FxHashMap;
 
 use super::hex_split::{HexRuleError, HexSplits, HexTarget, hex_rules};
-use super::recombine_repair::repair_leftovers;
+use super::recombine_repair::{VolumeIds, repair_leftovers};
 use crate::build::{CellKind, ExtractedKinds, IndexedMesh, classify_volume, extract_with, polyhedron_stream};
 use crate::cmap::{BitSet, CMap3, Dart, Orbit};
 use crate::modify::{Plan, execute};
-use crate::query::{MatchOptions, Metric, QuerySet, Strategy, find_matches, select};
+use crate::query::{Match, MatchOptions, Metric, QuerySet, Selected, Strategy, find_matches, select_by_volumes};
 
 /// The rules' queries and their prefix tree, and their targets, built once per
 /// process; a target's modify plan is built the first time a match of it is replaced.
@@ -129,8 +129,9 @@ pub fn recombine(
     let splits = HexSplits::get();
     let catalogue_seconds = t.elapsed().as_secs_f64();
     let book = rule_book()?;
+    let volumes = VolumeIds::of(map);
     let mut report = RecombineReport {
-        tets_in: map.cells(Orbit::Volume).filter(|&d| classify_volume(map, d) == CellKind::Tet).count(),
+        tets_in: volumes.first_dart.iter().filter(|&&d| classify_volume(map, d) == CellKind::Tet).count(),
         queries: book.targets.len(),
         catalogue_seconds,
         rules_seconds: t.elapsed().as_secs_f64() - catalogue_seconds,
@@ -141,21 +142,36 @@ pub fn recombine(
     let found = find_matches(
         map,
         &book.set,
-        &MatchOptions { metric: Some(&metric), min_hex_quality: Some(opts.min_quality), ..Default::default() },
+        &MatchOptions {
+            metric: Some(&metric),
+            min_hex_quality: Some(opts.min_quality),
+            volume_of: Some(&volumes.of_dart),
+            ..Default::default()
+        },
     );
     report.candidates = found.matches.len();
     report.steps = found.steps;
-    let candidates: Vec<_> = found.matches.into_iter().filter(|m| m.score > opts.min_quality).collect();
+    // The matching dropped every hexahedron at or below the threshold already.
+    debug_assert!(found.matches.iter().all(|m| m.score > opts.min_quality));
+    let candidates = found.matches;
     report.matches = candidates.len();
     report.query_seconds = t.elapsed().as_secs_f64();
 
     let t = Instant::now();
-    let mut chosen = select(map, &book.set, &candidates, opts.strategy, None);
+    let nb_volumes = volumes.first_dart.len();
+    let mut chosen = select_by_volumes(&candidates, &found.volumes, nb_volumes, opts.strategy);
     if opts.repair_effort > 0.0 {
-        let repaired = repair_leftovers(map, &book.set, &candidates, &mut chosen, opts.repair_effort);
+        let repaired =
+            repair_leftovers(map, &book.set, &candidates, &found.volumes, &volumes, &mut chosen, opts.repair_effort);
         (report.repairs, report.repaired_tets) = (repaired.repairs, repaired.tets);
     }
     report.select_seconds = t.elapsed().as_secs_f64();
+    // The candidates are not needed any more: free them before the map grows.
+    let chosen: Vec<Match> = chosen.into_iter().map(|i| candidates[i]).collect();
+    drop((candidates, found.volumes, volumes));
+    let mut annot = book.set.annotator();
+    let chosen: Vec<Selected> =
+        chosen.into_iter().map(|m| Selected { m, darts: book.set.darts_of(map, &m, &mut annot) }).collect();
 
     let t = Instant::now();
     let mut out = Recombined::default();

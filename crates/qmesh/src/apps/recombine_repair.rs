@@ -16,7 +16,7 @@ use rustc_hash::FxHashMap;
 use smallvec::SmallVec;
 
 use crate::cmap::{CMap3, Dart, Orbit, OrbitWalker};
-use crate::query::{Annotator, Match, QuerySet, Selected};
+use crate::query::{Match, MatchVolumes, QuerySet};
 
 /// Owner of a volume left over.
 const FREE: u32 = u32::MAX;
@@ -28,18 +28,27 @@ const DROPS: [usize; 5] = [1, 2, 4, 8, 16];
 /// Search nodes per deepening step.
 const NODES: usize = 2_000;
 
-/// The volume index of every dart (`FREE` for dead darts) and a dart of each volume.
-pub(crate) fn volume_ids(map: &CMap3) -> (Vec<u32>, Vec<Dart>) {
-    let mut id = vec![FREE; map.dart_capacity()];
-    let mut walker = OrbitWalker::new();
-    let mut first = Vec::new();
-    for (v, d) in map.cells(Orbit::Volume).enumerate() {
-        for x in walker.collect(map, d, Orbit::Volume) {
-            id[x.idx()] = v as u32;
+/// The volume index of every dart and a dart of each volume.
+pub(crate) struct VolumeIds {
+    /// Per raw dart index, its volume (`FREE` for dead darts).
+    pub of_dart: Vec<u32>,
+    /// A dart of each volume.
+    pub first_dart: Vec<Dart>,
+}
+
+impl VolumeIds {
+    pub(crate) fn of(map: &CMap3) -> VolumeIds {
+        let mut of_dart = vec![FREE; map.dart_capacity()];
+        let mut walker = OrbitWalker::new();
+        let mut first_dart = Vec::new();
+        for (v, d) in map.cells(Orbit::Volume).enumerate() {
+            for x in walker.collect(map, d, Orbit::Volume) {
+                of_dart[x.idx()] = v as u32;
+            }
+            first_dart.push(d);
         }
-        first.push(d);
+        VolumeIds { of_dart, first_dart }
     }
-    (id, first)
 }
 
 /// The volumes sharing a face with each volume (`firsts[v]` a dart of volume v), as
@@ -65,10 +74,9 @@ fn volume_adjacency(map: &CMap3, volume: &[u32], firsts: &[Dart]) -> (Vec<u32>, 
 
 /// The selection as an owner per volume, the search state, and lazily filled caches.
 struct Repair<'a> {
-    map: &'a CMap3,
-    set: &'a QuerySet,
     candidates: &'a [Match],
-    volume: Vec<u32>,
+    /// The volumes of each candidate (from the matching).
+    cand_vols: &'a MatchVolumes,
     /// The volumes sharing a face with each volume (CSR).
     adjacent_at: Vec<u32>,
     adjacent: Vec<u32>,
@@ -77,25 +85,19 @@ struct Repair<'a> {
     stamp: u32,
     /// Selected hexahedron owning each volume, `FREE` or `TAKEN`.
     owner: Vec<u32>,
-    /// Volumes of each selected hexahedron.
-    hex_vols: Vec<Vec<u32>>,
+    /// The candidate of each selected hexahedron (`FREE` once dropped).
+    hex_cand: Vec<u32>,
     /// Candidates by the volume of their start dart (CSR).
     start_offsets: Vec<u32>,
     by_start: Vec<u32>,
     /// Faces between the start volume of a candidate and its farthest volume, at most.
     reach: usize,
-    /// Where the volumes of each candidate looked at so far are in `arena`
-    /// (`FREE`: not looked at): their count, then the sorted volumes.
-    cand_at: Vec<u32>,
-    arena: Vec<u32>,
     /// Whether the candidates starting in each volume are in `by_volume`.
     indexed: Vec<bool>,
     /// Candidates by the volumes they contain, for the start volumes indexed so far.
     by_volume: Vec<Vec<u32>>,
-    /// Where the candidates containing each volume looked at are in `cont_arena`.
-    containing: FxHashMap<u32, (u32, u32)>,
-    cont_arena: Vec<u32>,
-    annot: Annotator,
+    /// Whether `by_volume[v]` holds every candidate containing v, best score first.
+    complete: Vec<bool>,
     // The current search.
     added: Vec<u32>,
     dropped: Vec<u32>,
@@ -110,35 +112,15 @@ struct Repair<'a> {
 }
 
 impl Repair<'_> {
-    fn vols_of_darts(&self, darts: &[Dart]) -> Vec<u32> {
-        let mut v: Vec<u32> = darts.iter().map(|d| self.volume[d.idx()]).collect();
-        v.sort_unstable();
-        v.dedup();
-        v
-    }
-
     /// The volumes of candidate `c`, sorted.
-    fn cand_vols(&mut self, c: u32) -> &[u32] {
-        if self.cand_at[c as usize] == FREE {
-            let darts = self.set.darts_of(self.map, &self.candidates[c as usize], &mut self.annot);
-            let vols = self.vols_of_darts(&darts);
-            self.cand_at[c as usize] = self.arena.len() as u32;
-            self.arena.push(vols.len() as u32);
-            self.arena.extend(vols);
-        }
-        self.known_vols(c)
-    }
-
-    /// The volumes of a candidate [`cand_vols`](Self::cand_vols) has looked at.
     fn known_vols(&self, c: u32) -> &[u32] {
-        let at = self.cand_at[c as usize] as usize;
-        &self.arena[at + 1..at + 1 + self.arena[at] as usize]
+        self.cand_vols.of(c as usize)
     }
 
-    /// The candidates containing volume `v`, best score first (their volumes known).
-    fn containing(&mut self, v: u32) -> std::ops::Range<usize> {
-        if let Some(&(a, b)) = self.containing.get(&v) {
-            return a as usize..b as usize;
+    /// Makes `by_volume[v]` the candidates containing volume `v`, best score first.
+    fn index_containing(&mut self, v: u32) {
+        if self.complete[v as usize] {
+            return;
         }
         self.stamp += 1;
         let mut ball = vec![v];
@@ -166,19 +148,15 @@ impl Repair<'_> {
             }
             for k in self.start_offsets[u as usize]..self.start_offsets[u as usize + 1] {
                 let c = self.by_start[k as usize];
-                for i in 0..self.cand_vols(c).len() {
-                    let w = self.known_vols(c)[i];
+                for &w in self.cand_vols.of(c as usize) {
                     self.by_volume[w as usize].push(c);
                 }
             }
         }
-        let mut out = std::mem::take(&mut self.by_volume[v as usize]);
-        let score = |c: &u32| self.candidates[*c as usize].score;
-        out.sort_unstable_by(|a, b| score(b).total_cmp(&score(a)).then(a.cmp(b)));
-        let a = self.cont_arena.len();
-        self.cont_arena.extend(out);
-        self.containing.insert(v, (a as u32, self.cont_arena.len() as u32));
-        a..self.cont_arena.len()
+        let candidates = self.candidates;
+        let score = |c: &u32| candidates[*c as usize].score;
+        self.by_volume[v as usize].sort_unstable_by(|a, b| score(b).total_cmp(&score(a)).then(a.cmp(b)));
+        self.complete[v as usize] = true;
     }
 
     fn set_owner(&mut self, v: u32, o: u32) {
@@ -211,19 +189,19 @@ impl Repair<'_> {
     /// The debt volume with the fewest usable candidates (up to 3) and those candidates (fewest
     /// drops first, then best score); None once the debt is paid.
     fn most_constrained(&mut self) -> Option<(u32, Vec<u32>)> {
-        let mut best: Option<(u32, std::ops::Range<usize>, usize)> = None;
+        let mut best: Option<(u32, usize)> = None;
         for i in 0..self.debt.len() {
             let v = self.debt[i];
             if self.owner[v as usize] != FREE {
                 continue;
             }
-            let range = self.containing(v);
+            self.index_containing(v);
             // Counting stops at 3: what matters is finding the volumes with no
             // usable candidate (the search fails) or one (no choice to make).
-            let bound = best.as_ref().map_or(3, |b| b.2);
+            let bound = best.map_or(3, |b| b.1);
             let mut usable = 0;
-            for k in range.clone() {
-                if self.drops_of(self.cont_arena[k]).is_some() {
+            for &c in &self.by_volume[v as usize] {
+                if self.drops_of(c).is_some() {
                     usable += 1;
                     if usable >= bound {
                         break;
@@ -231,19 +209,17 @@ impl Repair<'_> {
                 }
             }
             if best.is_none() || usable < bound {
-                best = Some((v, range, usable));
+                best = Some((v, usable));
                 if usable == 0 {
                     break;
                 }
             }
         }
-        best.map(|(v, range, _)| {
-            let mut usable: Vec<(usize, u32)> = range
+        best.map(|(v, _)| {
+            let mut usable: Vec<(usize, u32)> = self.by_volume[v as usize]
+                .iter()
                 .enumerate()
-                .filter_map(|(rank, k)| {
-                    let c = self.cont_arena[k];
-                    self.drops_of(c).map(|d| (d.len() * 1_000_000 + rank, c))
-                })
+                .filter_map(|(rank, &c)| self.drops_of(c).map(|d| (d.len() * 1_000_000 + rank, c)))
                 .collect();
             usable.sort_unstable();
             (v, usable.into_iter().map(|(_, c)| c).collect())
@@ -261,8 +237,8 @@ impl Repair<'_> {
             let Some(drops) = self.drops_of(c) else { continue };
             let (log, debt, dropped) = (self.log.len(), self.debt.len(), self.dropped.len());
             for h in drops {
-                for i in 0..self.hex_vols[h as usize].len() {
-                    let x = self.hex_vols[h as usize][i];
+                for i in 0..self.known_vols(self.hex_cand[h as usize]).len() {
+                    let x = self.known_vols(self.hex_cand[h as usize])[i];
                     self.set_owner(x, FREE);
                     self.debt.push(x);
                 }
@@ -297,18 +273,16 @@ impl Repair<'_> {
 
     /// Makes the repair found by [`search`](Self::search) part of the selection;
     /// returns the tetrahedra left over that it covers.
-    fn apply(&mut self, slots: &mut Vec<Option<Selected>>) -> usize {
+    fn apply(&mut self) -> usize {
         for &h in &self.dropped {
-            slots[h as usize] = None;
-            self.hex_vols[h as usize].clear();
+            self.hex_cand[h as usize] = FREE;
         }
         for &c in &self.added {
-            let h = slots.len() as u32;
-            let m = self.candidates[c as usize];
-            slots.push(Some(Selected { m, darts: self.set.darts_of(self.map, &m, &mut self.annot) }));
-            let vols = self.known_vols(c).to_vec();
-            vols.iter().for_each(|&v| self.owner[v as usize] = h);
-            self.hex_vols.push(vols);
+            let h = self.hex_cand.len() as u32;
+            for &v in self.cand_vols.of(c as usize) {
+                self.owner[v as usize] = h;
+            }
+            self.hex_cand.push(c);
         }
         // A volume whose first change came from FREE was left over.
         let mut first: FxHashMap<u32, u32> = FxHashMap::default();
@@ -334,16 +308,17 @@ pub(crate) fn repair_leftovers(
     map: &CMap3,
     set: &QuerySet,
     candidates: &[Match],
-    chosen: &mut Vec<Selected>,
+    cand_vols: &MatchVolumes,
+    volumes: &VolumeIds,
+    chosen: &mut Vec<usize>,
     effort: f64,
 ) -> Repaired {
-    let covered: usize = chosen.iter().map(|s| set.queries[s.m.query as usize].nb_volumes()).sum();
-    let tets = map.cells(Orbit::Volume).count();
-    if covered == tets {
+    let covered: usize = chosen.iter().map(|&c| cand_vols.of(c).len()).sum();
+    let (volume, dart_of) = (&volumes.of_dart, &volumes.first_dart);
+    let nv = dart_of.len();
+    if covered == nv {
         return Repaired { repairs: 0, tets: 0 };
     }
-    let (volume, dart_of) = volume_ids(map);
-    let nv = dart_of.len();
     let mut start_offsets = vec![0u32; nv + 1];
     candidates.iter().for_each(|m| start_offsets[volume[m.start.idx()] as usize + 1] += 1);
     for i in 0..nv {
@@ -356,28 +331,22 @@ pub(crate) fn repair_leftovers(
         by_start[fill[v] as usize] = i as u32;
         fill[v] += 1;
     }
-    let (adjacent_at, adjacent) = volume_adjacency(map, &volume, &dart_of);
+    let (adjacent_at, adjacent) = volume_adjacency(map, volume, dart_of);
     let mut r = Repair {
-        map,
-        set,
         candidates,
-        volume,
+        cand_vols,
         adjacent_at,
         adjacent,
         seen: vec![0; nv],
         stamp: 0,
         owner: vec![FREE; nv],
-        hex_vols: Vec::new(),
+        hex_cand: Vec::new(),
         start_offsets,
         by_start,
         reach: set.queries.iter().map(|q| q.reach()).max().unwrap_or(0),
-        cand_at: vec![FREE; candidates.len()],
-        arena: Vec::new(),
-        containing: FxHashMap::default(),
-        cont_arena: Vec::new(),
         indexed: vec![false; nv],
+        complete: vec![false; nv],
         by_volume: vec![Vec::new(); nv],
-        annot: set.annotator(),
         added: Vec::new(),
         dropped: Vec::new(),
         debt: Vec::new(),
@@ -387,11 +356,10 @@ pub(crate) fn repair_leftovers(
         drop_limit: 0,
         limited: std::cell::Cell::new(false),
     };
-    r.hex_vols = chosen.iter().map(|s| r.vols_of_darts(&s.darts)).collect();
-    for (h, vs) in r.hex_vols.iter().enumerate() {
-        vs.iter().for_each(|&v| r.owner[v as usize] = h as u32);
+    r.hex_cand = chosen.iter().map(|&c| c as u32).collect();
+    for (h, &c) in chosen.iter().enumerate() {
+        cand_vols.of(c).iter().for_each(|&v| r.owner[v as usize] = h as u32);
     }
-    let mut slots: Vec<Option<Selected>> = chosen.drain(..).map(Some).collect();
     let mut done = Repaired { repairs: 0, tets: 0 };
     let mut pass_nodes = (effort * candidates.len() as f64) as usize;
     // Leftovers whose search failed with neither bound reached: no deeper search helps.
@@ -411,12 +379,13 @@ pub(crate) fn repair_leftovers(
             pass_nodes -= r.nodes;
             hopeless[v0 as usize] = !found && !r.limited.get() && r.nodes < r.node_limit;
             if found {
-                done.tets += r.apply(&mut slots);
+                done.tets += r.apply();
                 done.repairs += 1;
             }
             r.clear_search();
         }
     }
-    chosen.extend(slots.into_iter().flatten());
+    chosen.clear();
+    chosen.extend(r.hex_cand.iter().filter(|&&c| c != FREE).map(|&c| c as usize));
     done
 }

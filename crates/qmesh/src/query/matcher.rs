@@ -72,6 +72,59 @@ pub struct MatchOptions<'a> {
     /// Jacobian above this: each corner is checked as soon as it is matched, and the
     /// walk leaves a branch when every query through it has a corner at or below.
     pub min_hex_quality: Option<f64>,
+    /// The volume id of every input dart (by raw index): when given, the report lists
+    /// the input volumes of each match ([`MatchReport::volumes`]), so that selecting
+    /// among matches needs no second annotation.
+    pub volume_of: Option<&'a [u32]>,
+}
+
+/// The input volumes of each match, sorted (filled when [`MatchOptions::volume_of`] is
+/// given; empty otherwise).
+#[derive(Clone, Debug, Default)]
+pub struct MatchVolumes {
+    at: Vec<u32>,
+    ids: Vec<u32>,
+}
+
+impl MatchVolumes {
+    /// The volumes of match `i`.
+    pub fn of(&self, i: usize) -> &[u32] {
+        &self.ids[self.at[i] as usize..self.at[i + 1] as usize]
+    }
+
+    /// Number of matches listed.
+    pub fn len(&self) -> usize {
+        self.at.len().saturating_sub(1)
+    }
+
+    /// Whether no match is listed.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// Appends the volumes of the match annotated in `matched` (0-based by label).
+    fn push(&mut self, query: &Query, matched: &[u32], volume_of: &[u32]) {
+        if self.at.is_empty() {
+            self.at.push(0);
+        }
+        let from = self.ids.len();
+        self.ids.extend(query.volume_labels().iter().map(|&l| volume_of[matched[l as usize - 1] as usize]));
+        self.ids[from..].sort_unstable();
+        self.at.push(self.ids.len() as u32);
+    }
+
+    /// Appends every match of `other`.
+    fn append(&mut self, other: MatchVolumes) {
+        if other.at.is_empty() {
+            return;
+        }
+        if self.at.is_empty() {
+            self.at.push(0);
+        }
+        let base = self.ids.len() as u32;
+        self.at.extend(other.at[1..].iter().map(|&a| a + base));
+        self.ids.extend(other.ids);
+    }
 }
 
 /// What [`find_matches`] found.
@@ -82,6 +135,9 @@ pub struct MatchReport {
     pub per_query: Vec<usize>,
     /// Matches counting automorphic copies.
     pub with_automorphisms: Vec<usize>,
+    /// The input volumes of each match, in the order of `matches` (with
+    /// [`MatchOptions::volume_of`] only).
+    pub volumes: MatchVolumes,
     /// Symbols checked (darts visited × 3, roughly): the annotation throughput.
     pub steps: u64,
     pub seconds: f64,
@@ -107,45 +163,78 @@ const CHUNK: usize = 4096;
 pub fn find_matches(map: &CMap3, set: &QuerySet, opts: &MatchOptions<'_>) -> MatchReport {
     let t = Instant::now();
     let n = map.dart_capacity();
-    let chunks: Vec<(Vec<Match>, Vec<usize>, u64)> = (0..n.div_ceil(CHUNK))
+    // Fold then reduce (in start-dart order): one growing list per task instead of
+    // one per chunk, so the lists merge in place (large ones are remapped, not
+    // copied) and the peak memory stays near the matches' own size.
+    let found = (0..n.div_ceil(CHUNK))
         .into_par_iter()
-        .map_init(
-            || set.annotator(),
-            |annot, c| {
-                let mut out = Vec::new();
-                let mut all = vec![0usize; set.queries.len()];
+        .fold(
+            || (set.annotator(), Found::new(set.queries.len())),
+            |(mut annot, mut found), c| {
                 let before = annot.steps;
                 for s in (c * CHUNK).max(1)..((c + 1) * CHUNK).min(n) {
                     let Some(start) = Dart::from_raw(s as u32).filter(|&d| map.is_live(d)) else { continue };
-                    matches_at(map, set, opts, annot, start, &mut out, &mut all);
+                    matches_at(
+                        map,
+                        set,
+                        opts,
+                        &mut annot,
+                        start,
+                        &mut found.matches,
+                        &mut found.all,
+                        &mut found.volumes,
+                    );
                 }
-                (out, all, annot.steps - before)
+                found.steps += annot.steps - before;
+                (annot, found)
             },
         )
-        .collect();
+        .map(|(_, found)| found)
+        .reduce(|| Found::new(set.queries.len()), Found::merge);
     let mut r = MatchReport {
         per_query: vec![0; set.queries.len()],
-        with_automorphisms: vec![0; set.queries.len()],
+        with_automorphisms: found.all,
+        steps: found.steps,
+        volumes: found.volumes,
         ..Default::default()
     };
-    r.matches.reserve(chunks.iter().map(|c| c.0.len()).sum());
-    for (ms, all, steps) in chunks {
-        for m in &ms {
-            r.per_query[m.query as usize] += 1;
-        }
-        for (a, b) in r.with_automorphisms.iter_mut().zip(all) {
-            *a += b;
-        }
-        r.steps += steps;
-        r.matches.extend(ms);
+    for m in &found.matches {
+        r.per_query[m.query as usize] += 1;
     }
+    r.matches = found.matches;
     r.seconds = t.elapsed().as_secs_f64();
     r
 }
 
+/// The matches found over a range of start darts.
+struct Found {
+    matches: Vec<Match>,
+    /// Per query, matches with their automorphic copies.
+    all: Vec<usize>,
+    steps: u64,
+    volumes: MatchVolumes,
+}
+
+impl Found {
+    fn new(queries: usize) -> Found {
+        Found { matches: Vec::new(), all: vec![0; queries], steps: 0, volumes: MatchVolumes::default() }
+    }
+
+    /// `self` then `next` (the start darts after).
+    fn merge(mut self, next: Found) -> Found {
+        self.matches.extend(next.matches);
+        self.all.iter_mut().zip(next.all).for_each(|(a, b)| *a += b);
+        self.steps += next.steps;
+        self.volumes.append(next.volumes);
+        self
+    }
+}
+
 /// The matches of every query of `set` whose label 1 is at `start` (after the filters
 /// of `opts`: automorphic copies, hexahedron quality, geometric fit), appended to
-/// `out`; `all[q]` counts query q's matches with their automorphic copies.
+/// `out`; `all[q]` counts query q's matches with their automorphic copies. With
+/// [`MatchOptions::volume_of`], the volumes of each match found go to `volumes`.
+#[allow(clippy::too_many_arguments)] // the walk's state, passed down from each caller's loop
 pub(crate) fn matches_at(
     map: &CMap3,
     set: &QuerySet,
@@ -154,6 +243,7 @@ pub(crate) fn matches_at(
     start: Dart,
     out: &mut Vec<Match>,
     all: &mut [usize],
+    volumes: &mut MatchVolumes,
 ) {
     let prune = (!opts.all_automorphisms).then_some(set.prune.as_slice());
     let guard = opts.min_hex_quality.map(|t| (&set.guards, t));
@@ -180,6 +270,9 @@ pub(crate) fn matches_at(
                 if opts.all_automorphisms { 1 } else { query.automorphisms.valid_images(map, &query.word, a) };
             let score = opts.metric.map_or(0.0, |m| m.evaluate(map, query, a.matched_raw()));
             out.push(Match { query: q, start, score });
+            if let Some(volume_of) = opts.volume_of {
+                volumes.push(query, a.matched_raw(), volume_of);
+            }
         }
     });
 }

@@ -36,10 +36,12 @@ pub mod word;
 pub use annotate::Annotator;
 pub use automorphism::Automorphisms;
 pub use error::QueryError;
-pub use matcher::{Match, MatchOptions, MatchReport, QuerySet, find_matches};
+pub use matcher::{Match, MatchOptions, MatchReport, MatchVolumes, QuerySet, find_matches};
 pub use metric::{Metric, MetricFn};
 pub use query_map::Query;
-pub use select::{LazySearch, Selected, Separation, Strategy, select, select_random_lazily, select_separated};
+pub use select::{
+    LazySearch, Selected, Separation, Strategy, select, select_by_volumes, select_random_lazily, select_separated,
+};
 pub use trie::PrefixTree;
 pub use word::{Condition, Labelling, QueryWord};
 

@@ -20,6 +20,8 @@ pub struct Query {
     pub automorphisms: Automorphisms,
     /// Faces of each volume as cycles of labels (volume metric), computed on first use.
     volumes: OnceLock<Vec<Vec<Vec<u32>>>>,
+    /// See [`Query::volume_labels`].
+    volume_labels: OnceLock<Vec<u32>>,
     /// Labels of darts at the 8 extreme corners in VTK hexahedron order, when the
     /// query's own geometry spans a positive hexahedron (hex-quality metric).
     pub corners: Option<[u32; 8]>,
@@ -84,6 +86,7 @@ impl Query {
             word,
             automorphisms,
             volumes: OnceLock::new(),
+            volume_labels: OnceLock::new(),
             corners,
             orient_by_geometry: false,
             max_residual: None,
@@ -123,6 +126,17 @@ impl Query {
     /// Faces of each volume as cycles of labels.
     fn volumes(&self) -> &[Vec<Vec<u32>>] {
         self.volumes.get_or_init(|| volume_faces(&self.map, &self.labelling))
+    }
+
+    /// The smallest label of each volume: a match's input volumes are those of the
+    /// darts annotated with these.
+    pub(crate) fn volume_labels(&self) -> &[u32] {
+        self.volume_labels.get_or_init(|| {
+            self.volumes()
+                .iter()
+                .map(|faces| faces.iter().flatten().copied().min().expect("volumes have darts"))
+                .collect()
+        })
     }
 
     /// Number of darts.

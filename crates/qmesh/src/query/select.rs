@@ -7,7 +7,7 @@
 //! exactly when it shares a dart with a selected match.
 
 use super::annotate::Annotator;
-use super::matcher::{Match, MatchOptions, QuerySet, matches_at};
+use super::matcher::{Match, MatchOptions, MatchVolumes, QuerySet, matches_at};
 use crate::cmap::{BitSet, CMap3, Dart};
 
 /// In which order candidates are taken.
@@ -93,22 +93,54 @@ pub fn select_separated(
     max: Option<usize>,
     separation: Separation,
 ) -> Vec<Selected> {
-    let mut order: Vec<usize> = (0..candidates.len()).collect();
-    match strategy {
-        Strategy::Greedy => {}
-        Strategy::Best => order.sort_by(|&a, &b| candidates[b].score.total_cmp(&candidates[a].score)),
-        Strategy::Random(seed) => shuffle(&mut order, seed),
-    }
     let mut taken = Taken::new(map, separation);
     let mut annot = set.annotator();
     let mut out = Vec::new();
-    for i in order {
+    for i in order(candidates, strategy) {
         if max.is_some_and(|m| out.len() >= m) {
             break;
         }
         out.extend(taken.take(map, set, candidates[i], &mut annot));
     }
     out
+}
+
+/// As [`select`], with the input volumes of every candidate known (`volumes`, from
+/// [`MatchOptions::volume_of`] over `nb_volumes` volumes), returning the indices of
+/// the selected candidates: a match covers whole volumes, so two matches share a dart
+/// exactly when they share a volume, and no match is annotated again (the caller
+/// gets the darts of the few it keeps with [`QuerySet::darts_of`]).
+pub fn select_by_volumes(
+    candidates: &[Match],
+    volumes: &MatchVolumes,
+    nb_volumes: usize,
+    strategy: Strategy,
+) -> Vec<usize> {
+    assert_eq!(volumes.len(), candidates.len(), "the volumes of every candidate");
+    let mut used = BitSet::with_len(nb_volumes);
+    let mut out = Vec::new();
+    for i in order(candidates, strategy) {
+        let vs = volumes.of(i);
+        if vs.iter().any(|&v| used.get(v as usize)) {
+            continue;
+        }
+        vs.iter().for_each(|&v| {
+            used.insert(v as usize);
+        });
+        out.push(i);
+    }
+    out
+}
+
+/// The candidates' indices in the order `strategy` takes them.
+fn order(candidates: &[Match], strategy: Strategy) -> Vec<usize> {
+    let mut order: Vec<usize> = (0..candidates.len()).collect();
+    match strategy {
+        Strategy::Greedy => {}
+        Strategy::Best => order.sort_by(|&a, &b| candidates[b].score.total_cmp(&candidates[a].score)),
+        Strategy::Random(seed) => shuffle(&mut order, seed),
+    }
+    order
 }
 
 /// What [`select_random_lazily`] looked at.
@@ -149,7 +181,7 @@ pub fn select_random_lazily(
         stats.starts_tested += 1;
         found.clear();
         let consumed = MatchOptions { consumed: Some(&taken.used), ..*opts };
-        matches_at(map, set, &consumed, &mut annot, start, &mut found, &mut all);
+        matches_at(map, set, &consumed, &mut annot, start, &mut found, &mut all, &mut Default::default());
         stats.matches += found.len();
         for &m in &found {
             if out.len() < max {

@@ -7,7 +7,9 @@ use crate::common;
 use qmesh::build::{BuildOptions, build_volume_map};
 use qmesh::cmap::{BitSet, CMap3, Dart, Orbit};
 use qmesh::generate::{hex_grid, tet_grid};
-use qmesh::query::{Annotator, Condition, MatchOptions, Query, QueryError, QuerySet, Strategy, find_matches, select};
+use qmesh::query::{
+    Annotator, Condition, MatchOptions, Query, QueryError, QuerySet, Strategy, find_matches, select, select_by_volumes,
+};
 use qmesh::signature::{Flags, Surface, volume_signature};
 
 fn grid(x: usize, y: usize, z: usize) -> CMap3 {
@@ -245,6 +247,49 @@ fn selection_never_overlaps_and_respects_max_and_seed() {
     let b = select(&g, &set, &found.matches, Strategy::Random(7), Some(5));
     assert_eq!(a.len(), 5);
     assert_eq!(a.iter().map(|s| s.m.start).collect::<Vec<_>>(), b.iter().map(|s| s.m.start).collect::<Vec<_>>());
+}
+
+#[test]
+fn match_volumes_are_those_of_the_darts_and_select_by_volumes_equals_select() {
+    // Two queries (a pair and an L of three cells) over a grid: matches overlap a lot.
+    let g = grid(5, 4, 2);
+    let square = hex_grid(2, 2, 1);
+    let mut l = qmesh::build::IndexedMesh::new();
+    l.points.clone_from(&square.points);
+    for c in 0..3 {
+        let (kind, nodes) = square.cell(c);
+        l.push_cell(kind, nodes, None);
+    }
+    let l = build_volume_map(&l, &BuildOptions::default()).unwrap().0;
+    let set = QuerySet::new(vec![query(grid(2, 1, 1), Condition::Any), query(l, Condition::Any)]);
+    let mut volume_of = vec![u32::MAX; g.dart_capacity()];
+    let firsts: Vec<Dart> = g.cells(Orbit::Volume).collect();
+    for (v, &d) in firsts.iter().enumerate() {
+        g.orbit(d, Orbit::Volume).iter().for_each(|x| volume_of[x.idx()] = v as u32);
+    }
+    let metric = qmesh::query::Metric::Volume;
+    let opts = MatchOptions { metric: Some(&metric), volume_of: Some(&volume_of), ..Default::default() };
+    let found = find_matches(&g, &set, &opts);
+    assert_eq!(found.volumes.len(), found.matches.len());
+    assert!(found.per_query.iter().all(|&n| n > 10), "{:?}", found.per_query);
+    let mut a = set.annotator();
+    for (i, m) in found.matches.iter().enumerate() {
+        let mut vs: Vec<u32> = set.darts_of(&g, m, &mut a).iter().map(|d| volume_of[d.idx()]).collect();
+        vs.sort_unstable();
+        vs.dedup();
+        assert_eq!(found.volumes.of(i), vs, "match {i}");
+    }
+    // Without volumes asked for, none are listed.
+    assert!(find_matches(&g, &set, &MatchOptions::default()).volumes.is_empty());
+    for strategy in [Strategy::Greedy, Strategy::Best, Strategy::Random(3)] {
+        let by_darts: Vec<_> = select(&g, &set, &found.matches, strategy, None).iter().map(|s| s.m).collect();
+        let by_volumes: Vec<_> = select_by_volumes(&found.matches, &found.volumes, firsts.len(), strategy)
+            .iter()
+            .map(|&i| found.matches[i])
+            .collect();
+        assert_eq!(by_darts, by_volumes, "{strategy:?}");
+        assert!(by_darts.len() >= 10, "{strategy:?}: {}", by_darts.len());
+    }
 }
 
 #[test]
