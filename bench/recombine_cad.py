@@ -21,6 +21,7 @@ import sys
 import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+OUT = None  # the --out folder (gmsh's working folder)
 DATA = os.environ.get("QMESH_DATA", os.path.join(os.path.dirname(ROOT), "shared", "data"))
 Q = os.path.join(ROOT, "target", "release", "qmesh")
 HXT = os.path.join(os.path.dirname(DATA), "peers", "hxt_combine")
@@ -49,15 +50,19 @@ print(json.dumps({"cells": cells, "seconds": seconds}))
 """
 
 
-def sh(*cmd):
-    r = subprocess.run(cmd, capture_output=True, text=True)
+def sh(*cmd, cwd=None):
+    r = subprocess.run(cmd, capture_output=True, text=True, cwd=cwd)
     if r.returncode != 0:
         sys.exit(f"failed: {' '.join(cmd)}\n{r.stderr[-2000:]}")
     return r.stdout
 
 
 def gmsh_mesh(model, factor, recombine, out):
-    return json.loads(sh(sys.executable, "-c", MESH_WITH_GMSH, model, str(factor), str(recombine), out))
+    # gmsh's Recombine3DAll writes debug files (new_points.pos) into its working
+    # folder: run it in the output folder.
+    workdir = os.path.dirname(os.path.abspath(out)) if out != "-" else OUT
+    model = os.path.abspath(model)
+    return json.loads(sh(sys.executable, "-c", MESH_WITH_GMSH, model, str(factor), str(recombine), out, cwd=workdir))
 
 
 def side_by_side(tets, out, runs):
@@ -77,13 +82,15 @@ def main():
     ap.add_argument("--out", default="/tmp/qmesh-recombine-cad")
     ap.add_argument("models", nargs="*")
     a = ap.parse_args()
-    os.makedirs(a.out, exist_ok=True)
+    global OUT
+    OUT = os.path.abspath(a.out)
+    os.makedirs(OUT, exist_ok=True)
     models = a.models or sorted(glob.glob(os.path.join(DATA, "cad", "*")))
     rows = []
     jobs = []
     for model in models:
         name = os.path.splitext(os.path.basename(model))[0]
-        tets = os.path.join(a.out, f"{name}_rtree.mesh")
+        tets = os.path.join(OUT, f"{name}_rtree.mesh")
         t = time.perf_counter()
         try:
             mesh = gmsh_mesh(model, a.factor, 0, tets)
@@ -97,11 +104,11 @@ def main():
         jobs.append((name, "gmsh R-tree", tets, gmsh_hd))
     for vtk in sorted(glob.glob(os.path.join(DATA, "tet", "hexme_*.vtk"))) if not a.models else []:
         name = os.path.splitext(os.path.basename(vtk))[0]
-        tets = os.path.join(a.out, f"{name}.mesh")
+        tets = os.path.join(OUT, f"{name}.mesh")
         sh(Q, "convert", vtk, tets, "--force")
         jobs.append((name, "HexMe", tets, None))
     for name, source, tets, gmsh_hd in jobs:
-        q, h = side_by_side(tets, os.path.join(a.out, f"{name}_hex.mesh"), a.runs)
+        q, h = side_by_side(tets, os.path.join(OUT, f"{name}_hex.mesh"), a.runs)
         qr = q["output"]["recombine"]
         ho = h["output"]
         row = {

@@ -101,8 +101,14 @@ fn convert_refuses_to_overwrite_its_input_and_reports_errors() {
     assert!(err.contains("refusing to overwrite"), "{err}");
     assert_eq!(std::fs::read(&grid).unwrap(), before);
     let out = temp("c.msh");
-    let (code, _, err) = qmesh(&["convert", grid.to_str().unwrap(), out.to_str().unwrap()]);
+    let (code, said, err) = qmesh(&["convert", grid.to_str().unwrap(), out.to_str().unwrap()]);
     assert_eq!(code, 0, "{err}");
+    assert!(said.starts_with("wrote "), "{said}");
+    // -q as with every other command: the file, and nothing on stdout.
+    let quiet = temp("c_quiet.msh");
+    let (code, said, err) = qmesh(&["convert", "-q", grid.to_str().unwrap(), quiet.to_str().unwrap()]);
+    assert_eq!((code, said.as_str()), (0, ""), "{err}");
+    assert_eq!(std::fs::read(&quiet).unwrap(), std::fs::read(&out).unwrap());
     let (code, _, err) = qmesh(&["info", "/nonexistent/x.vtk"]);
     assert_eq!(code, 2);
     assert!(err.starts_with("error: /nonexistent/x.vtk"), "{err}");

@@ -27,6 +27,10 @@ pub struct Args {
     /// Leave out the points that no cell uses (kept by default).
     #[arg(long)]
     pub drop_unused: bool,
+    /// No summary (warnings and errors are still printed, on stderr; the exit status
+    /// tells the outcome), as with the other commands.
+    #[arg(short, long)]
+    pub quiet: bool,
 }
 
 pub fn run(a: Args) -> Result<ExitCode> {
@@ -46,13 +50,18 @@ pub fn run(a: Args) -> Result<ExitCode> {
     let opts = WriteOptions { binary: a.binary };
     if format == Format::Moka {
         write_map(&a.output, &loaded.map, Some(format), &opts)?;
-        let c = loaded.map.count_cells();
-        println!("wrote {} (the map: {} darts, {} volumes)", a.output.display(), loaded.map.nb_darts(), c.volumes);
+        if !a.quiet {
+            let c = loaded.map.count_cells();
+            println!("wrote {} (the map: {} darts, {} volumes)", a.output.display(), loaded.map.nb_darts(), c.volumes);
+        }
         return Ok(ExitCode::SUCCESS);
     }
     let unused = loaded.report.unreferenced_points;
     let mesh = indexed_for(&loaded.map, &loaded.cell_arrays, format, !a.drop_unused);
     write_indexed(&a.output, &mesh, format, &opts)?;
+    if a.quiet {
+        return Ok(ExitCode::SUCCESS);
+    }
     // What the file holds, as written (a surface format gets the boundary surface).
     let what = if format.is_surface() && mesh.nb_polygons() > 0 && loaded.map.dimension() == 3 {
         format!("{} polygons: the boundary surface of {} cells", mesh.nb_polygons(), loaded.map.count_cells().volumes)
