@@ -22,6 +22,9 @@ import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 OUT = None  # the --out folder (gmsh's working folder)
+# gmsh's hex-dominant meshing of the AS1 assembly ran for over 20 minutes here: a
+# model gmsh cannot mesh in this time is skipped, with a message.
+GMSH_TIMEOUT = 300
 DATA = os.environ.get("QMESH_DATA", os.path.join(os.path.dirname(ROOT), "shared", "data"))
 Q = os.path.join(ROOT, "target", "release", "qmesh")
 HXT = os.path.join(os.path.dirname(DATA), "peers", "hxt_combine")
@@ -50,8 +53,11 @@ print(json.dumps({"cells": cells, "seconds": seconds}))
 """
 
 
-def sh(*cmd, cwd=None):
-    r = subprocess.run(cmd, capture_output=True, text=True, cwd=cwd)
+def sh(*cmd, cwd=None, timeout=None):
+    try:
+        r = subprocess.run(cmd, capture_output=True, text=True, cwd=cwd, timeout=timeout)
+    except subprocess.TimeoutExpired:
+        sys.exit(f"failed: {' '.join(cmd[:2])} …\ntimed out after {timeout} s")
     if r.returncode != 0:
         sys.exit(f"failed: {' '.join(cmd)}\n{r.stderr[-2000:]}")
     return r.stdout
@@ -62,7 +68,7 @@ def gmsh_mesh(model, factor, recombine, out):
     # folder: run it in the output folder.
     workdir = os.path.dirname(os.path.abspath(out)) if out != "-" else OUT
     model = os.path.abspath(model)
-    return json.loads(sh(sys.executable, "-c", MESH_WITH_GMSH, model, str(factor), str(recombine), out, cwd=workdir))
+    return json.loads(sh(sys.executable, "-c", MESH_WITH_GMSH, model, str(factor), str(recombine), out, cwd=workdir, timeout=GMSH_TIMEOUT))
 
 
 def side_by_side(tets, out, runs):
