@@ -174,16 +174,7 @@ pub fn find_matches(map: &CMap3, set: &QuerySet, opts: &MatchOptions<'_>) -> Mat
                 let before = annot.steps;
                 for s in (c * CHUNK).max(1)..((c + 1) * CHUNK).min(n) {
                     let Some(start) = Dart::from_raw(s as u32).filter(|&d| map.is_live(d)) else { continue };
-                    matches_at(
-                        map,
-                        set,
-                        opts,
-                        &mut annot,
-                        start,
-                        &mut found.matches,
-                        &mut found.all,
-                        &mut found.volumes,
-                    );
+                    matches_at(map, set, opts, &mut annot, start, &mut found);
                 }
                 found.steps += annot.steps - before;
                 (annot, found)
@@ -207,16 +198,16 @@ pub fn find_matches(map: &CMap3, set: &QuerySet, opts: &MatchOptions<'_>) -> Mat
 }
 
 /// The matches found over a range of start darts.
-struct Found {
-    matches: Vec<Match>,
+pub(crate) struct Found {
+    pub(crate) matches: Vec<Match>,
     /// Per query, matches with their automorphic copies.
-    all: Vec<usize>,
+    pub(crate) all: Vec<usize>,
     steps: u64,
     volumes: MatchVolumes,
 }
 
 impl Found {
-    fn new(queries: usize) -> Found {
+    pub(crate) fn new(queries: usize) -> Found {
         Found { matches: Vec::new(), all: vec![0; queries], steps: 0, volumes: MatchVolumes::default() }
     }
 
@@ -232,19 +223,18 @@ impl Found {
 
 /// The matches of every query of `set` whose label 1 is at `start` (after the filters
 /// of `opts`: automorphic copies, hexahedron quality, geometric fit), appended to
-/// `out`; `all[q]` counts query q's matches with their automorphic copies. With
-/// [`MatchOptions::volume_of`], the volumes of each match found go to `volumes`.
-#[allow(clippy::too_many_arguments)] // the walk's state, passed down from each caller's loop
+/// `found.matches`; `found.all[q]` counts query q's matches with their automorphic
+/// copies. With [`MatchOptions::volume_of`], the volumes of each match go to
+/// `found.volumes`.
 pub(crate) fn matches_at(
     map: &CMap3,
     set: &QuerySet,
     opts: &MatchOptions<'_>,
     annot: &mut Annotator,
     start: Dart,
-    out: &mut Vec<Match>,
-    all: &mut [usize],
-    volumes: &mut MatchVolumes,
+    found: &mut Found,
 ) {
+    let Found { matches: out, all, volumes, .. } = found;
     let prune = (!opts.all_automorphisms).then_some(set.prune.as_slice());
     let guard = opts.min_hex_quality.map(|t| (&set.guards, t));
     set.tree.walk(map, annot, start.raw(), opts.consumed, prune, guard, |q, a| {

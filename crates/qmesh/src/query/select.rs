@@ -7,7 +7,7 @@
 //! exactly when it shares a dart with a selected match.
 
 use super::annotate::Annotator;
-use super::matcher::{Match, MatchOptions, MatchVolumes, QuerySet, matches_at};
+use super::matcher::{Found, Match, MatchOptions, MatchVolumes, QuerySet, matches_at};
 use crate::cmap::{BitSet, CMap3, Dart};
 
 /// In which order candidates are taken.
@@ -170,7 +170,7 @@ pub fn select_random_lazily(
     let mut taken = Taken::new(map, separation);
     let mut annot = set.annotator();
     let mut order = LazyPermutation::new(map.dart_capacity(), seed);
-    let (mut found, mut all) = (Vec::new(), vec![0usize; set.queries.len()]);
+    let mut found = Found::new(set.queries.len());
     let mut out = Vec::new();
     let mut stats = LazySearch::default();
     while out.len() < max {
@@ -179,17 +179,17 @@ pub fn select_random_lazily(
             continue;
         };
         stats.starts_tested += 1;
-        found.clear();
+        found.matches.clear();
         let consumed = MatchOptions { consumed: Some(&taken.used), ..*opts };
-        matches_at(map, set, &consumed, &mut annot, start, &mut found, &mut all, &mut Default::default());
-        stats.matches += found.len();
-        for &m in &found {
+        matches_at(map, set, &consumed, &mut annot, start, &mut found);
+        stats.matches += found.matches.len();
+        for &m in &found.matches {
             if out.len() < max {
                 out.extend(taken.take(map, set, m, &mut annot));
             }
         }
     }
-    stats.with_automorphisms = all.iter().sum();
+    stats.with_automorphisms = found.all.iter().sum();
     (out, stats)
 }
 
