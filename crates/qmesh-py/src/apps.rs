@@ -9,7 +9,7 @@ use std::time::Instant;
 use numpy::PyReadonlyArray3;
 use pyo3::prelude::*;
 use qmesh::apps::{
-    GeneratedKind, McFlags, RecombineOptions, SplitChoice, SubdivideOptions, TetrahedralizeOptions,
+    GeneratedKind, McFlags, RecombineOptions, RootShape, SplitChoice, SubdivideOptions, TetrahedralizeOptions,
     conformal as conformal_map, generated_pattern_set, marching_cubes_field, mc_pattern_set,
     recombine as recombine_map, recombined_mesh, subdivide as subdivide_surface, tet_to_hex,
     tetrahedralize as split_hexes, triangulate,
@@ -114,9 +114,10 @@ pub fn marching_cubes(
 }
 
 /// Octree subdivision (2022 Algorithm 5) of the box around a surface mesh (or the
-/// boundary of a volume mesh), `levels` deep.
+/// boundary of a volume mesh), `levels` deep; with `init`, the root cells are the
+/// bounding box cut into `init` cells along its longest axis (the authors' set-up).
 #[pyfunction]
-#[pyo3(signature = (surface, levels=4, margin=0.01, remove_outside=false, direct=false))]
+#[pyo3(signature = (surface, levels=4, margin=0.01, remove_outside=false, direct=false, init=None))]
 pub fn subdivide(
     py: Python<'_>,
     surface: &RawMesh,
@@ -124,8 +125,14 @@ pub fn subdivide(
     margin: f64,
     remove_outside: bool,
     direct: bool,
+    init: Option<u32>,
 ) -> PyResult<(RawMesh, String)> {
     let cells = Arc::clone(&surface.mesh);
+    let root = match init {
+        None => RootShape::Cube,
+        Some(0) => return Err(value_error(py, "init must be at least 1".to_string())),
+        Some(init) => RootShape::BoundingBox { init },
+    };
     let result = interruptible(py, move || {
         let boundary;
         let s = if cells.is_volume() {
@@ -138,7 +145,7 @@ pub fn subdivide(
             return Err("no surface to subdivide around".to_string());
         }
         let bvh = TriangleBvh::from_polygons(&s.points, (0..s.nb_polygons()).map(|i| s.polygon(i)));
-        let opts = SubdivideOptions { levels, margin, direct, remove_outside, use_signatures: true };
+        let opts = SubdivideOptions { levels, root, margin, direct, remove_outside, use_signatures: true };
         let sub = subdivide_surface(&bvh, &opts, None, &|_| {}).map_err(|e| e.to_string())?;
         Ok((sub.mesh, to_json(&sub.report)?))
     })?;

@@ -129,6 +129,16 @@ def test_subdivide_a_surface():
     assert "level" in octree.cell_data
 
 
+def test_subdivide_with_the_authors_root():
+    # The authors' program (cgal_hexa_subdivision -lmax 3) on the bunny: 254 cells.
+    surface = qmesh.read(data("surface/bunny.off"))
+    octree, report = surface.subdivide(levels=3, remove_outside=True, init=1)
+    assert (report["volumes"], report["faces_replaced"], report["volumes_replaced"]) == (254, 234, 56)
+    assert len(octree.cells["hexahedron"]) == 254
+    with pytest.raises(qmesh.MeshValueError, match="init must be at least 1"):
+        surface.subdivide(levels=1, init=0)
+
+
 def test_modify_runs_a_rule_file(tmp_path):
     boots = ROOT / "examples" / "boots"
     subprocess.run([sys.executable, str(boots / "boots.py"), str(tmp_path)], check=True, capture_output=True)

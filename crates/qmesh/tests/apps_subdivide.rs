@@ -3,7 +3,7 @@
 
 mod common;
 
-use qmesh::apps::{SubdivideOptions, subdivide};
+use qmesh::apps::{RootShape, SubdivideOptions, subdivide};
 use qmesh::build::{CellValues, IndexedMesh};
 use qmesh::geom::TriangleBvh;
 use qmesh::io::read_surface;
@@ -97,9 +97,49 @@ fn bunny_at_level_four_both_ways() {
     assert_eq!(with_papers.mesh, qr.mesh);
     assert!(qr.map.expect("map").is_valid().is_empty());
     assert_eq!(max_points_inside_an_edge(&qr.mesh), 1);
-    // Removing the outside keeps the cells the surface touches and those inside.
+    // Removing the outside level by level keeps the cells the surface touches and those
+    // inside: the same cells as removing it from the whole octree at the end.
     let opts = SubdivideOptions { levels: 4, direct: true, remove_outside: true, ..Default::default() };
-    let kept = subdivide(&bvh, &opts, None, &|_| {}).expect("subdivide").report;
-    assert_eq!(kept.volumes + kept.removed_outside, 1842);
-    assert!(kept.removed_outside > 500 && kept.volumes > 1000, "{kept:?}");
+    let kept = subdivide(&bvh, &opts, None, &|_| {}).expect("subdivide");
+    let mut whole = qmesh::apps::octree_around(&bvh, 4, opts.margin);
+    assert_eq!(whole.leaves.len(), 1842);
+    for c in whole.outside_leaves(&bvh) {
+        whole.leaves.remove(&c);
+    }
+    assert_eq!(kept.mesh, whole.to_mesh());
+    assert!(kept.report.removed_outside > 100 && kept.report.volumes > 1000, "{:?}", kept.report);
+    let qr = subdivide(&bvh, &SubdivideOptions { direct: false, ..opts }, None, &|_| {}).expect("subdivide");
+    assert_eq!(qr.mesh, kept.mesh);
+    assert_eq!(qr.report.removed_outside, kept.report.removed_outside);
+    assert!(qr.map.expect("map").is_valid().is_empty());
+}
+
+/// The authors' set-up (root cells on the bounding box, `-init X`): the figures of their
+/// program (`cgal_hexa_subdivision`, 2022) on the bunny, measured with it.
+#[test]
+fn bounding_box_root_gives_the_authors_counts() {
+    let Some(dir) = common::data_dir() else { return };
+    let s = read_surface(&dir.join("surface/bunny.off"), None).expect("bunny");
+    let bvh = TriangleBvh::from_polygons(&s.points, (0..s.nb_polygons()).map(|i| s.polygon(i)));
+    let run = |levels, init, remove_outside, direct| {
+        let root = RootShape::BoundingBox { init };
+        let opts = SubdivideOptions { levels, root, remove_outside, direct, ..Default::default() };
+        subdivide(&bvh, &opts, None, &|_| {}).expect("subdivide")
+    };
+    // -lmax 0 -init X: the grid cells the bunny meets or holds.
+    for (init, cells) in [(1, 1), (2, 8), (3, 23), (4, 49), (8, 238), (12, 644)] {
+        assert_eq!(run(0, init, false, true).report.volumes, cells, "init {init}");
+    }
+    // -lmax 3 and 5, with and without removing the outside: volumes, generic cells
+    // (hanging vertices), face and volume replacements.
+    for (levels, remove, figures) in
+        [(3, true, [254, 2, 234, 56]), (3, false, [393, 17, 234, 56]), (5, true, [6045, 434, 5020, 1282])]
+    {
+        let qr = run(levels, 1, remove, false);
+        let r = &qr.report;
+        let hanging = r.with_hanging_vertices.expect("a map");
+        assert_eq!([r.volumes, hanging, r.faces_replaced, r.volumes_replaced], figures, "l_max {levels}");
+        assert_eq!(qr.mesh, run(levels, 1, remove, true).mesh);
+        assert!(qr.map.expect("map").is_valid().is_empty());
+    }
 }

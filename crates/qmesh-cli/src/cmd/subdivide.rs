@@ -5,7 +5,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use anyhow::{Result, bail};
-use qmesh::apps::{SubdivideOptions, subdivide};
+use qmesh::apps::{RootShape, SubdivideOptions, subdivide};
 use qmesh::geom::TriangleBvh;
 use qmesh::io::{Format, WriteOptions, read_surface, resolve_format, write_indexed};
 use serde_json::json;
@@ -24,6 +24,13 @@ pub struct Args {
     /// Refine plain boxes with hand-written code instead of query-replace.
     #[arg(long)]
     pub direct: bool,
+    /// Level-0 cells: `cube` (one cube around the surface, qmesh's) or `box` (the
+    /// authors' program: the bounding box itself, in `--init` cells along its longest axis).
+    #[arg(long, default_value = "cube", value_parser = ["cube", "box"])]
+    pub root: String,
+    /// With `--root box`: level-0 cells along the longest axis (the authors' `-init`).
+    #[arg(long, default_value_t = 1)]
+    pub init: u32,
     /// Root cube side beyond the surface's longest extent, as a fraction (0.01 = 1 %).
     #[arg(long, default_value_t = 0.01)]
     pub margin: f64,
@@ -59,8 +66,13 @@ pub fn run(a: Args) -> Result<ExitCode> {
     if bvh.is_empty() {
         bail!("{}: no polygon to subdivide around", a.surface.display());
     }
+    if a.init == 0 || a.init > 1024 {
+        bail!("--init {} is outside [1, 1024]", a.init);
+    }
+    let root = if a.root == "box" { RootShape::BoundingBox { init: a.init } } else { RootShape::Cube };
     let opts = SubdivideOptions {
         levels: a.levels,
+        root,
         margin: a.margin,
         direct: a.direct,
         remove_outside: a.remove_outside,
@@ -86,6 +98,9 @@ pub fn run(a: Args) -> Result<ExitCode> {
             "volumes_replaced": r.volumes_replaced,
             "balance_splits": r.balance_splits,
             "removed_outside": r.removed_outside,
+            "with_hanging_vertices": r.with_hanging_vertices,
+            "root": a.root,
+            "init": a.init,
             "darts": s.map.as_ref().map(|m| m.nb_darts()),
             "valid": validity,
             "seconds": r.seconds,

@@ -121,10 +121,12 @@ class Mesh:
 
     # --- applications -------------------------------------------------------------
 
-    def subdivide(self, levels=4, margin=0.01, remove_outside=False, direct=False):
+    def subdivide(self, levels=4, margin=0.01, remove_outside=False, direct=False, init=None):
         """The 2:1 octree of hexahedra around this surface, `levels` deep, by
-        query-replace (2022 Algorithm 5). Returns (mesh, report)."""
-        return _pair(_qmesh.subdivide(self._raw, levels, margin, remove_outside, direct))
+        query-replace (2022 Algorithm 5). The root is one cube around the surface, or
+        with `init` the bounding box in `init` cells along its longest axis (the
+        authors' program's set-up). Returns (mesh, report)."""
+        return _pair(_qmesh.subdivide(self._raw, levels, margin, remove_outside, direct, init))
 
     def tet2hex(self):
         """Every tetrahedron into four hexahedra (2022 §7.4). Returns (mesh, report)."""

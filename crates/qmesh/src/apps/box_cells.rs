@@ -16,7 +16,7 @@ pub(crate) fn volume_box(map: &CMap3, d: Dart, w: &mut OrbitWalker) -> Aabb {
 }
 
 fn on_side(b: &Aabb, k: usize, x: f64) -> bool {
-    let tol = LATTICE_TOL * b.extent()[0];
+    let tol = LATTICE_TOL * b.extent()[k];
     (x - b.lo[k]).abs() <= tol || (x - b.hi[k]).abs() <= tol
 }
 
@@ -28,14 +28,8 @@ pub(crate) fn is_corner(b: &Aabb, p: [f64; 3]) -> bool {
 /// The octree cell a box is.
 pub(crate) fn cell_of(root: RootBox, b: &Aabb) -> OctCell {
     let level = root.level_of(b.extent()[0]);
-    let s = root.size / f64::from(1u32 << level);
-    OctCell { level, ijk: [0, 1, 2].map(|k| ((b.lo[k] - root.lo[k]) / s).round().max(0.0) as u32) }
-}
-
-/// The octree cells of the map's volumes.
-pub(crate) fn map_cells(map: &CMap3, root: RootBox) -> Vec<OctCell> {
-    let mut w = OrbitWalker::new();
-    map.cells(Orbit::Volume).map(|d| cell_of(root, &volume_box(map, d, &mut w))).collect()
+    let s = root.step(level);
+    OctCell { level, ijk: [0, 1, 2].map(|k| ((b.lo[k] - root.lo[k]) / s[k]).round().max(0.0) as u32) }
 }
 
 /// Flags with `mark` the darts of the volume of `d` (whose box is `b`) that start at a
@@ -43,8 +37,8 @@ pub(crate) fn map_cells(map: &CMap3, root: RootBox) -> Vec<OctCell> {
 pub(crate) fn flag_box_corners(map: &mut CMap3, mark: Mark, d: Dart, b: &Aabb, w: &mut OrbitWalker) {
     for &x in w.collect(map, d, Orbit::Volume) {
         let (p, q) = (map.point(x), map.point(map.next(x)));
-        let tol = LATTICE_TOL * b.extent()[0];
-        let along_edge = (0..3).filter(|&k| (p[k] - q[k]).abs() <= tol).count() == 2;
+        let e = b.extent();
+        let along_edge = (0..3).filter(|&k| (p[k] - q[k]).abs() <= LATTICE_TOL * e[k]).count() == 2;
         if along_edge && is_corner(b, p) {
             map.mark(x, mark);
         }

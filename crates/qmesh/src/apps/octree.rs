@@ -9,11 +9,17 @@ use rustc_hash::{FxHashMap, FxHashSet};
 use crate::build::{CellKind, CellValues, IndexedMesh};
 use crate::geom::{Aabb, TriangleBvh};
 
-/// The cubic root cell: its lowest corner and side.
+/// The level-0 cells: a grid of `cells` equal boxes of extent `cell` from `lo`. qmesh's
+/// own root is one cube around the surface; the authors' program (2022 §7.1, its
+/// `-init X`) divides the surface's bounding box itself into X cells along its longest
+/// axis and as many along the others as keep the cells closest to cubes.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RootBox {
     pub lo: [f64; 3],
-    pub size: f64,
+    /// Extent of a level-0 cell along each axis.
+    pub cell: [f64; 3],
+    /// Level-0 cells along each axis.
+    pub cells: [u32; 3],
 }
 
 impl RootBox {
@@ -23,19 +29,53 @@ impl RootBox {
         let e = b.extent();
         let size = e[0].max(e[1]).max(e[2]).max(f64::MIN_POSITIVE) * (1.0 + margin);
         let c = b.centre();
-        RootBox { lo: c.map(|x| x - size / 2.0), size }
+        RootBox { lo: c.map(|x| x - size / 2.0), cell: [size; 3], cells: [1; 3] }
+    }
+
+    /// The authors' root: `b` itself cut into `init` cells along its longest axis and
+    /// ⌈init · extent / longest⌉ along each other one, each axis in equal parts (so with
+    /// `init` = 1 the one root cell is the bounding box, not a cube).
+    pub fn bounding_grid(b: &Aabb, init: u32) -> RootBox {
+        let e = b.extent().map(|x| x.max(f64::MIN_POSITIVE));
+        let longest = e[0].max(e[1]).max(e[2]);
+        let init = init.max(1);
+        let cells = e.map(|x| ((f64::from(init) * x / longest).ceil() as u32).clamp(1, init));
+        RootBox { lo: b.lo, cell: [0, 1, 2].map(|k| e[k] / f64::from(cells[k])), cells }
     }
 
     /// The box of a cell.
     pub fn cell_box(&self, c: OctCell) -> Aabb {
-        let s = self.size / f64::from(1u32 << c.level);
-        let lo = [0, 1, 2].map(|k| self.lo[k] + s * f64::from(c.ijk[k]));
-        Aabb { lo, hi: lo.map(|x| x + s) }
+        let s = self.step(c.level);
+        let lo = [0, 1, 2].map(|k| self.lo[k] + s[k] * f64::from(c.ijk[k]));
+        Aabb { lo, hi: [0, 1, 2].map(|k| lo[k] + s[k]) }
     }
 
-    /// The level of a box of side `side` (the nearest integer of log2(root / side)).
+    /// Cell extents at `level`.
+    pub fn step(&self, level: u8) -> [f64; 3] {
+        self.cell.map(|x| x / f64::from(1u32 << level))
+    }
+
+    /// Cells along each axis at `level`.
+    pub fn cells_at(&self, level: u8) -> [i64; 3] {
+        self.cells.map(|n| i64::from(n) << level)
+    }
+
+    /// The level of a box whose extent along x is `side` (the nearest integer of
+    /// log2(level-0 extent / side)).
     pub fn level_of(&self, side: f64) -> u8 {
-        (self.size / side).log2().round().clamp(0.0, 30.0) as u8
+        (self.cell[0] / side).log2().round().clamp(0.0, 30.0) as u8
+    }
+
+    /// The level-0 cells.
+    pub fn level_zero(&self) -> impl Iterator<Item = OctCell> + '_ {
+        let [nx, ny, nz] = self.cells;
+        (0..nz).flat_map(move |k| (0..ny).flat_map(move |j| (0..nx).map(move |i| OctCell { level: 0, ijk: [i, j, k] })))
+    }
+
+    /// Whether the same-level position `p` of a cell at `level` is inside the grid.
+    fn contains(&self, level: u8, p: [i64; 3]) -> bool {
+        let n = self.cells_at(level);
+        (0..3).all(|k| (0..n[k]).contains(&p[k]))
     }
 }
 
@@ -48,6 +88,7 @@ pub struct OctCell {
 }
 
 impl OctCell {
+    /// The first level-0 cell (the only one of a cubic root).
     pub const ROOT: OctCell = OctCell { level: 0, ijk: [0; 3] };
 
     pub fn children(self) -> impl Iterator<Item = OctCell> {
@@ -78,8 +119,9 @@ pub struct Octree {
 }
 
 impl Octree {
+    /// Every level-0 cell of `root` as a leaf.
     pub fn new(root: RootBox) -> Octree {
-        Octree { root, leaves: std::iter::once(OctCell::ROOT).collect() }
+        Octree { root, leaves: root.level_zero().collect() }
     }
 
     /// Replaces each given leaf by its 8 children; returns the children.
@@ -99,10 +141,9 @@ impl Octree {
     fn unbalanced_by(&self, fine: &[OctCell]) -> Vec<OctCell> {
         let mut out: FxHashSet<OctCell> = FxHashSet::default();
         for &f in fine.iter().filter(|f| f.level >= 2) {
-            let n = 1i64 << f.level;
             for d in face_and_edge_offsets() {
                 let p = [0, 1, 2].map(|k| i64::from(f.ijk[k]) + d[k]);
-                if p.iter().any(|&x| x < 0 || x >= n) {
+                if !self.root.contains(f.level, p) {
                     continue;
                 }
                 let same = OctCell { level: f.level, ijk: p.map(|x| x as u32) };
@@ -145,9 +186,8 @@ impl Octree {
     /// The leaf holding the same-size neighbour of `c` at offset `d`, if that neighbour
     /// is inside the root and not subdivided further than `c`.
     fn leaf_at_or_above(&self, c: OctCell, d: [i64; 3]) -> Option<OctCell> {
-        let n = 1i64 << c.level;
         let p = [0, 1, 2].map(|k| i64::from(c.ijk[k]) + d[k]);
-        if p.iter().any(|&x| x < 0 || x >= n) {
+        if !self.root.contains(c.level, p) {
             return None;
         }
         let same = OctCell { level: c.level, ijk: p.map(|x| x as u32) };
@@ -224,8 +264,8 @@ impl Octree {
     /// Position of a point of the finest lattice of `leaves`.
     fn lattice_position(&self, leaves: &[OctCell]) -> impl Fn([u32; 3]) -> [f64; 3] + Sync + '_ {
         let fine = leaves.iter().map(|c| c.level).max().unwrap_or(0);
-        let step = self.root.size / f64::from(1u32 << fine);
-        move |q| [0, 1, 2].map(|k| self.root.lo[k] + step * f64::from(q[k]))
+        let step = self.root.step(fine);
+        move |q| [0, 1, 2].map(|k| self.root.lo[k] + step[k] * f64::from(q[k]))
     }
 
     /// Hexahedra of the leaves (VTK order) with their `level` array. Points are shared
@@ -264,8 +304,21 @@ mod tests {
     use super::*;
 
     #[test]
+    fn bounding_grid_cuts_each_axis_in_equal_parts() {
+        let b = Aabb { lo: [1.0, 0.0, -1.0], hi: [11.0, 4.0, 1.5] };
+        let r = RootBox::bounding_grid(&b, 4);
+        // 4 along x (10), ⌈4 · 4 / 10⌉ = 2 along y, ⌈4 · 2.5 / 10⌉ = 1 along z.
+        assert_eq!(r.cells, [4, 2, 1]);
+        assert_eq!(r.cell, [2.5, 2.0, 2.5]);
+        assert_eq!(Octree::new(r).leaves.len(), 8);
+        let last = r.cell_box(OctCell { level: 1, ijk: [7, 3, 1] });
+        assert_eq!((last.lo, last.hi), ([9.75, 3.0, 0.25], [11.0, 4.0, 1.5]));
+        assert_eq!(RootBox::bounding_grid(&b, 1).cell, b.extent());
+    }
+
+    #[test]
     fn balance_splits_coarse_neighbours() {
-        let mut t = Octree::new(RootBox { lo: [0.0; 3], size: 1.0 });
+        let mut t = Octree::new(RootBox { lo: [0.0; 3], cell: [1.0; 3], cells: [1; 3] });
         let kids = t.split(&[OctCell::ROOT]);
         // Split the corner child twice more: its face neighbours (level 1) must split.
         let c = kids[0];

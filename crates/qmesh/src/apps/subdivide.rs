@@ -7,21 +7,40 @@ use std::time::Instant;
 
 use rayon::prelude::*;
 
-use super::box_cells::{cell_of, flag_box_corners, is_corner, map_cells, volume_box};
+use super::box_cells::{cell_of, flag_box_corners, is_corner, volume_box};
 use super::generated_patterns::{GeneratedKind, given_or_generated};
-use super::octree::{Octree, RootBox};
+use super::octree::{OctCell, Octree, RootBox};
 use crate::build::{BuildOptions, IndexedMesh, build_map};
 use crate::cmap::{CMap3, Dart, MapError, Mark, Orbit, OrbitWalker};
 use crate::geom::{Aabb, TriangleBvh};
 use crate::pattern::PatternSet;
 use crate::replace::replace_cells;
 use crate::signature::Flags;
+use rustc_hash::FxHashSet;
 
-/// Options of [`subdivide`].
+/// The level-0 cells of [`subdivide`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum RootShape {
+    /// One cube centred on the surface's bounding box (qmesh's default; see `margin`).
+    #[default]
+    Cube,
+    /// The authors' program's set-up (2022 §7.1, `hexa-subdivision -init X`): the
+    /// bounding box itself in `init` cells along its longest axis (see
+    /// [`RootBox::bounding_grid`]); the level-0 cells the surface neither meets nor
+    /// holds are left out from the start, as that program does.
+    BoundingBox { init: u32 },
+}
+
+/// Options of [`subdivide`]. With `remove_outside`, each level first drops the cells
+/// outside the surface that it does not touch, so they are neither refined nor split
+/// for balance (the authors' program does the same: with [`RootShape::BoundingBox`]
+/// the cell and replacement counts are its own).
 #[derive(Clone, Copy, Debug)]
 pub struct SubdivideOptions {
-    /// Maximal level l_max (the root cube is level 0).
+    /// Maximal level l_max (the root cells are level 0).
     pub levels: u8,
+    /// The level-0 cells.
+    pub root: RootShape,
     /// Growth of the root cube beyond the surface's longest extent (0.01 = 1 %).
     pub margin: f64,
     /// Refine with plain boxes instead of query-replace (the paper's time-direct).
@@ -34,7 +53,14 @@ pub struct SubdivideOptions {
 
 impl Default for SubdivideOptions {
     fn default() -> Self {
-        SubdivideOptions { levels: 4, margin: 0.01, direct: false, remove_outside: false, use_signatures: true }
+        SubdivideOptions {
+            levels: 4,
+            root: RootShape::Cube,
+            margin: 0.01,
+            direct: false,
+            remove_outside: false,
+            use_signatures: true,
+        }
     }
 }
 
@@ -49,7 +75,12 @@ pub struct SubdivideReport {
     pub volumes_replaced: usize,
     /// Cells split to restore 2:1 balance.
     pub balance_splits: usize,
+    /// Cells dropped as outside the surface (each level drops its own before refining).
     pub removed_outside: usize,
+    /// Volumes with hanging vertices (more than 8 vertices: a finer neighbour split a
+    /// face or an edge; the authors' "generic" cells). Counted on the map, so `None`
+    /// with `direct`.
+    pub with_hanging_vertices: Option<usize>,
     pub seconds: f64,
 }
 
@@ -74,28 +105,30 @@ pub fn subdivide(
     progress: &dyn Fn(u8),
 ) -> Result<Subdivision, MapError> {
     let t = Instant::now();
-    let root = RootBox::around(&surface.bounds(), opts.margin);
+    let start = initial_tree(surface, opts.root, opts.margin);
+    let root = start.root;
     let (mut tree, map, mut report) = if opts.direct {
-        let (tree, r) = subdivide_direct(root, surface, opts.levels, progress);
+        let (tree, r) = subdivide_direct(start, surface, opts.levels, opts.remove_outside, progress);
         (tree, None, r)
     } else {
-        let (map, r) = subdivide_qr(root, surface, opts, patterns, progress)?;
-        let tree = Octree { root, leaves: map_cells(&map, root).into_iter().collect() };
+        let (mut map, mut r) = subdivide_qr(start, surface, opts, patterns, progress)?;
+        let mut cells = volume_boxes(&map);
+        if opts.remove_outside {
+            // What the last level left outside (the levels before removed theirs).
+            r.removed_outside += remove_outside_volumes(&mut map, root, surface, &mut cells)?;
+        }
+        let tree = Octree { root, leaves: cells.iter().map(|(_, b)| cell_of(root, b)).collect() };
         (tree, Some(map), r)
     };
-    let mut map = map;
-    if opts.remove_outside {
-        let outside = tree.outside_leaves(surface);
-        report.removed_outside = outside.len();
-        outside.iter().for_each(|c| {
-            tree.leaves.remove(c);
-        });
-        if let Some(m) = map.as_mut() {
-            remove_outside_volumes(m, root, &tree)?;
-        }
+    if opts.direct && opts.remove_outside {
+        report.removed_outside += prune_outside(&mut tree, surface);
     }
     let mesh = tree.to_mesh();
     report.volumes = tree.leaves.len();
+    report.with_hanging_vertices = map.as_ref().map(|m| {
+        let mut w = OrbitWalker::new();
+        m.cells(Orbit::Volume).filter(|&d| w.collect(m, d, Orbit::Volume).len() > 24).count()
+    });
     report.per_level = vec![0; usize::from(opts.levels) + 1];
     tree.leaves.iter().for_each(|c| report.per_level[usize::from(c.level)] += 1);
     report.seconds = t.elapsed().as_secs_f64();
@@ -105,19 +138,43 @@ pub fn subdivide(
 /// The octree of [`subdivide`] with `direct` (no map): for pipelines that only need
 /// the cells, such as marching cubes of a surface.
 pub fn octree_around(surface: &TriangleBvh, levels: u8, margin: f64) -> Octree {
-    subdivide_direct(RootBox::around(&surface.bounds(), margin), surface, levels, &|_| {}).0
+    subdivide_direct(initial_tree(surface, RootShape::Cube, margin), surface, levels, false, &|_| {}).0
+}
+
+/// The level-0 leaves of `shape` around `surface`.
+fn initial_tree(surface: &TriangleBvh, shape: RootShape, margin: f64) -> Octree {
+    match shape {
+        RootShape::Cube => Octree::new(RootBox::around(&surface.bounds(), margin)),
+        RootShape::BoundingBox { init } => {
+            let mut tree = Octree::new(RootBox::bounding_grid(&surface.bounds(), init));
+            prune_outside(&mut tree, surface);
+            tree
+        }
+    }
+}
+
+/// Removes the leaves outside `surface` that it does not touch; returns how many.
+fn prune_outside(tree: &mut Octree, surface: &TriangleBvh) -> usize {
+    let outside = tree.outside_leaves(surface);
+    outside.iter().for_each(|c| {
+        tree.leaves.remove(c);
+    });
+    outside.len()
 }
 
 fn subdivide_direct(
-    root: RootBox,
+    mut tree: Octree,
     surface: &TriangleBvh,
     levels: u8,
+    remove_outside: bool,
     progress: &dyn Fn(u8),
 ) -> (Octree, SubdivideReport) {
-    let mut tree = Octree::new(root);
     let mut r = SubdivideReport::default();
     for level in 1..=levels {
         progress(level);
+        if remove_outside {
+            r.removed_outside += prune_outside(&mut tree, surface);
+        }
         let touched = tree.touched(surface, level);
         let created = tree.split(&touched);
         r.balance_splits += tree.balance(created);
@@ -126,7 +183,7 @@ fn subdivide_direct(
 }
 
 fn subdivide_qr(
-    root: RootBox,
+    start: Octree,
     surface: &TriangleBvh,
     opts: &SubdivideOptions,
     patterns: Option<&PatternSet>,
@@ -134,19 +191,19 @@ fn subdivide_qr(
 ) -> Result<(CMap3, SubdivideReport), MapError> {
     let mut generated = None;
     let set = given_or_generated(patterns, GeneratedKind::HexSubdivision, &mut generated);
-    let mut map = build_map(Octree::new(root).to_mesh(), &BuildOptions::default()).expect("one hexahedron builds").0;
+    let mut map = build_map(start.to_mesh(), &BuildOptions::default()).expect("a grid of boxes builds").0;
     // Each dart's label is the level of its volume (replacements copy labels to the
     // darts they create; children are relabelled after each refinement).
     map.enable_labels();
     let mut r = SubdivideReport::default();
     for level in 1..=opts.levels {
         progress(level);
-        let mut w = OrbitWalker::new();
-        let candidates: Vec<(Dart, Aabb)> = map
-            .cells(Orbit::Volume)
-            .filter(|&d| map.label_of(d) == i32::from(level) - 1)
-            .map(|d| (d, volume_box(&map, d, &mut w)))
-            .collect();
+        let mut cells = volume_boxes(&map);
+        if opts.remove_outside {
+            r.removed_outside += remove_outside_volumes(&mut map, start.root, surface, &mut cells)?;
+        }
+        let candidates: Vec<(Dart, Aabb)> =
+            cells.into_iter().filter(|&(d, _)| map.label_of(d) == i32::from(level) - 1).collect();
         let touched: Vec<Dart> =
             candidates.par_iter().filter(|(_, b)| surface.intersects_box(b)).map(|&(d, _)| d).collect();
         let mut plan = balance_closure(&mut map, &touched, i32::from(level) - 1)?;
@@ -259,15 +316,29 @@ fn midpoint(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
     [0, 1, 2].map(|k| 0.5 * (a[k] + b[k]))
 }
 
-/// Removes from the map the volumes whose cell is no longer a leaf of `tree`.
-fn remove_outside_volumes(map: &mut CMap3, root: RootBox, tree: &Octree) -> Result<(), MapError> {
+/// One dart and the box of every volume of the map.
+fn volume_boxes(map: &CMap3) -> Vec<(Dart, Aabb)> {
     let mut w = OrbitWalker::new();
-    let gone: Vec<Dart> = map
-        .cells(Orbit::Volume)
-        .filter(|&d| !tree.leaves.contains(&cell_of(root, &volume_box(map, d, &mut w))))
-        .collect();
-    for d in gone {
+    map.cells(Orbit::Volume).map(|d| (d, volume_box(map, d, &mut w))).collect()
+}
+
+/// Removes from the map the volumes outside `surface` that it does not touch, and
+/// from `cells` (the map's volumes and boxes); returns how many.
+fn remove_outside_volumes(
+    map: &mut CMap3,
+    root: RootBox,
+    surface: &TriangleBvh,
+    cells: &mut Vec<(Dart, Aabb)>,
+) -> Result<usize, MapError> {
+    let tree = Octree { root, leaves: cells.iter().map(|(_, b)| cell_of(root, b)).collect() };
+    let outside: FxHashSet<OctCell> = tree.outside_leaves(surface).into_iter().collect();
+    if outside.is_empty() {
+        return Ok(0);
+    }
+    let (gone, kept): (Vec<_>, Vec<_>) = cells.drain(..).partition(|(_, b)| outside.contains(&cell_of(root, b)));
+    *cells = kept;
+    for &(d, _) in &gone {
         map.remove_volume(d)?;
     }
-    Ok(())
+    Ok(gone.len())
 }

@@ -253,9 +253,11 @@ fn stack_if_new<V: Visited>(seen: &V, stack: &mut Vec<u32>, n: u32) {
 }
 
 /// Reusable traversal state for collecting single orbits without allocating per call.
+/// Visited darts are bits of a set as large as the map, cleared dart by dart at the next
+/// walk (a hash set costs ~10 % of a subdivision).
 #[derive(Clone, Debug, Default)]
 pub struct OrbitWalker {
-    seen: FxHashSet<u32>,
+    seen: BitSet,
     stack: Vec<u32>,
     out: Vec<Dart>,
 }
@@ -267,8 +269,11 @@ impl OrbitWalker {
 
     /// The darts of the orbit of `start`, in traversal order (start first).
     pub fn collect(&mut self, map: &CMap3, start: Dart, orbit: Orbit) -> &[Dart] {
-        self.seen.clear();
+        for d in &self.out {
+            self.seen.remove(d.raw() as usize);
+        }
         self.out.clear();
+        self.seen.grow(map.dart_capacity());
         let out = &mut self.out;
         walk_orbit(map, start, orbit, &mut self.seen, &mut self.stack, |d| out.push(d));
         &self.out
@@ -276,7 +281,7 @@ impl OrbitWalker {
 
     /// Whether `d` was reached by the last [`collect`](Self::collect).
     pub fn contains(&self, d: Dart) -> bool {
-        self.seen.contains(&d.raw())
+        self.seen.get(d.raw() as usize)
     }
 }
 
@@ -342,8 +347,10 @@ impl CMap3 {
 
     /// The darts of the orbit of `d` (allocates; loops should reuse an [`OrbitWalker`]).
     pub fn orbit(&self, d: Dart, orbit: Orbit) -> Vec<Dart> {
-        let mut w = OrbitWalker::new();
-        w.collect(self, d, orbit).to_vec()
+        // A hash set: a walker's bit set would be as large as the map, for one orbit.
+        let (mut seen, mut stack, mut out) = (FxHashSet::default(), Vec::new(), Vec::new());
+        walk_orbit(self, d, orbit, &mut seen, &mut stack, |x| out.push(x));
+        out
     }
 
     /// Runs `f` with the map's scratch walker (for `&mut self` operations).

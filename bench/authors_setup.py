@@ -1,0 +1,94 @@
+#!/usr/bin/env python3
+"""The authors' set-up side by side (issue 16): octree subdivision with the root cells on
+the surface's bounding box (`qmesh subdivide --root box --init X --remove-outside`)
+against the authors' own program (`../shared/peers/cgal_hexa_subdivision -init X`),
+round-robin (bench/measure.py), on bunny, armadillo and S3 at levels 5-7.
+
+Prints a Markdown table: volumes, hexahedra with hanging vertices ("generic"), face and
+volume query-replaces for both tools, the step time (qmesh's subdivision and removal;
+the peer's `Subdivision` + `Remove outside`), whole-process wall time and peak memory,
+and the ratios peer/qmesh (above 1: qmesh is faster or smaller).
+
+usage: bench/authors_setup.py [--runs N] [--levels 5,6,7] [--init X] [--out DIR] [SURFACE...]"""
+import argparse
+import json
+import os
+import re
+import subprocess
+import sys
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+DATA = os.environ.get("QMESH_DATA", os.path.join(os.path.dirname(ROOT), "shared", "data"))
+Q = os.path.join(ROOT, "target", "release", "qmesh")
+PEER = os.path.join(os.path.dirname(DATA), "peers", "cgal_hexa_subdivision")
+SURFACES = ["bunny.off", "armadillo.obj", "cgal_mesh3.off"]
+
+
+def sh(*cmd):
+    r = subprocess.run(cmd, capture_output=True, text=True)
+    if r.returncode != 0:
+        sys.exit(f"failed: {' '.join(cmd)}\n{r.stderr}")
+    return r.stdout
+
+
+def peer_figures(text):
+    """The peer's counts and step seconds from its stdout."""
+    num = r"([0-9.eE+-]+)"
+    def get(pattern, cast=float, last=False):
+        found = re.findall(pattern, text)
+        if not found:
+            sys.exit(f"peer output without {pattern!r}:\n{text}")
+        return cast(found[-1] if last else found[0])
+    return {
+        "volumes": get(r"\(TOTAL=(\d+)\)", int),
+        "generic": get(r"#generic=(\d+)", int),
+        "fqr": get(r"#faces-replaced: (\d+)", int, last=True),
+        "vqr": get(r"#volumes-replaced: (\d+)", int, last=True),
+        "step": get(r"Subdivision: " + num + "s") + get(r"Remove outside: " + num + "s"),
+    }
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--runs", type=int, default=3)
+    ap.add_argument("--levels", default="5,6,7")
+    ap.add_argument("--init", type=int, default=1)
+    ap.add_argument("--out", default="/tmp/qmesh-authors-setup")
+    ap.add_argument("surfaces", nargs="*")
+    a = ap.parse_args()
+    if not os.access(PEER, os.X_OK):
+        sys.exit(f"{PEER} is missing (see ../shared/peers/README.md)")
+    os.makedirs(a.out, exist_ok=True)
+    sh("cargo", "build", "--release", "-q", "--manifest-path", os.path.join(ROOT, "Cargo.toml"))
+    patterns = os.path.join(DATA, "patterns", "cgal")
+    print("| surface | level | qmesh volumes | generic | #fqr | #vqr | peer volumes | generic | #fqr | #vqr "
+          "| qmesh step s | peer step s | step ratio | qmesh wall s | peer wall s | wall ratio "
+          "| qmesh MB | peer MB | memory ratio |")
+    print("|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|")
+    for name in a.surfaces or SURFACES:
+        src = name if os.path.isabs(name) else os.path.join(DATA, "surface", name)
+        stem = os.path.splitext(os.path.basename(src))[0]
+        off = src
+        if not src.endswith(".off"):  # the peer reads OFF only
+            off = os.path.join(a.out, f"{stem}_surface.off")
+            sh(Q, "convert", src, off, "--force", "-q")
+        for level in [int(x) for x in a.levels.split(",")]:
+            out = os.path.join(a.out, f"{stem}_L{level}_box.vtk")
+            res = sh(
+                sys.executable, os.path.join(ROOT, "bench", "measure.py"), str(a.runs),
+                "qmesh", "--", Q, "subdivide", off, "--root", "box", "--init", str(a.init),
+                "--levels", str(level), "--remove-outside", "-o", out, "--json", "--force", "---",
+                "peer", "--", PEER, "-patterns", patterns, "-lmax", str(level), "-init", str(a.init), off,
+            )
+            q, p = [json.loads(line) for line in res.splitlines() if line.strip()]
+            qo, po = q["output"], peer_figures(p["output"])
+            print(f"| {stem} | {level} | {qo['volumes']:,} | {qo['with_hanging_vertices']:,} "
+                  f"| {qo['faces_replaced']:,} | {qo['volumes_replaced']:,} "
+                  f"| {po['volumes']:,} | {po['generic']:,} | {po['fqr']:,} | {po['vqr']:,} "
+                  f"| {qo['seconds']:.3f} | {po['step']:.3f} | {po['step'] / qo['seconds']:.1f} "
+                  f"| {q['seconds']:.2f} | {p['seconds']:.2f} | {p['seconds'] / q['seconds']:.1f} "
+                  f"| {q['peak_rss_bytes'] / 1e6:.0f} | {p['peak_rss_bytes'] / 1e6:.0f} "
+                  f"| {p['peak_rss_bytes'] / q['peak_rss_bytes']:.1f} |", flush=True)
+
+
+main()
