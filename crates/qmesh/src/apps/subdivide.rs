@@ -111,12 +111,13 @@ pub fn subdivide(
         let (tree, r) = subdivide_direct(start, surface, opts.levels, opts.remove_outside, progress);
         (tree, None, r)
     } else {
-        let (mut map, mut r) = subdivide_qr(start, surface, opts, patterns, progress)?;
-        let mut cells = volume_boxes(&map);
+        let (mut map, mut r, fresh) = subdivide_qr(start, surface, opts, patterns, progress)?;
         if opts.remove_outside {
             // What the last level left outside (the levels before removed theirs).
-            r.removed_outside += remove_outside_volumes(&mut map, root, surface, &mut cells)?;
+            let mut last = boxes_of(&map, &fresh);
+            r.removed_outside += remove_outside_volumes(&mut map, root, surface, &mut last)?;
         }
+        let cells = boxes_of(&map, &map.cells(Orbit::Volume).collect::<Vec<_>>());
         let tree = Octree { root, leaves: cells.iter().map(|(_, b)| cell_of(root, b)).collect() };
         (tree, Some(map), r)
     };
@@ -188,7 +189,7 @@ fn subdivide_qr(
     opts: &SubdivideOptions,
     patterns: Option<&PatternSet>,
     progress: &dyn Fn(u8),
-) -> Result<(CMap3, SubdivideReport), MapError> {
+) -> Result<(CMap3, SubdivideReport, Vec<Dart>), MapError> {
     let mut generated = None;
     let set = given_or_generated(patterns, GeneratedKind::HexSubdivision, &mut generated);
     let mut map = build_map(start.to_mesh(), &BuildOptions::default()).expect("a grid of boxes builds").0;
@@ -196,25 +197,32 @@ fn subdivide_qr(
     // darts they create; children are relabelled after each refinement).
     map.enable_labels();
     let mut r = SubdivideReport::default();
+    // The volumes made by the last level: the only ones the surface may touch, or that
+    // may be outside and untouched, among the cells of their level (the older leaves
+    // were refined, removed or found inside; balance refines inside cells only).
+    let mut fresh: Vec<Dart> = map.cells(Orbit::Volume).collect();
     for level in 1..=opts.levels {
         progress(level);
-        let mut cells = volume_boxes(&map);
+        let mut cells = boxes_of(&map, &fresh);
         if opts.remove_outside {
             r.removed_outside += remove_outside_volumes(&mut map, start.root, surface, &mut cells)?;
         }
-        let candidates: Vec<(Dart, Aabb)> =
-            cells.into_iter().filter(|&(d, _)| map.label_of(d) == i32::from(level) - 1).collect();
-        let touched: Vec<Dart> =
-            candidates.par_iter().filter(|(_, b)| surface.intersects_box(b)).map(|&(d, _)| d).collect();
-        let mut plan = balance_closure(&mut map, &touched, i32::from(level) - 1)?;
+        let parent_level = i32::from(level) - 1;
+        let touched: Vec<Dart> = cells
+            .par_iter()
+            .filter(|(d, b)| map.label_of(*d) == parent_level && surface.intersects_box(b))
+            .map(|&(d, _)| d)
+            .collect();
+        let mut plan = balance_closure(&mut map, &touched, parent_level)?;
         r.balance_splits += plan.len() - touched.len();
         plan.sort_unstable();
+        fresh.clear();
         for batch in plan.chunk_by(|a, b| a.0 == b.0) {
             let cells: Vec<Dart> = batch.iter().map(|&(_, d)| d).collect();
-            refine(&mut map, set, &cells, batch[0].0 + 1, opts.use_signatures, &mut r)?;
+            fresh.extend(refine(&mut map, set, &cells, batch[0].0 + 1, opts.use_signatures, &mut r)?);
         }
     }
-    Ok((map, r))
+    Ok((map, r, fresh))
 }
 
 /// The cells to split with `seeds` (all at level `seed_level`) so that 2:1 balance
@@ -255,6 +263,7 @@ fn add_to_plan(map: &mut CMap3, w: &mut OrbitWalker, in_plan: Mark, cell: (i32, 
 
 /// One refinement step of Algorithm 5 on the volumes of `cells`: split their whole
 /// edges, flag the darts at their corners, query-replace their faces, then themselves.
+/// Returns one dart of each child.
 fn refine(
     map: &mut CMap3,
     set: &PatternSet,
@@ -262,7 +271,7 @@ fn refine(
     child_level: i32,
     use_signatures: bool,
     r: &mut SubdivideReport,
-) -> Result<(), MapError> {
+) -> Result<Vec<Dart>, MapError> {
     let mut w = OrbitWalker::new();
     let old_darts: Vec<Dart> = cells.iter().flat_map(|&d| w.collect(map, d, Orbit::Volume).to_vec()).collect();
     let boxes: Vec<Aabb> = cells.iter().map(|&d| volume_box(map, d, &mut w)).collect();
@@ -309,17 +318,16 @@ fn refine(
             }
         }
     }
-    Ok(())
+    Ok(rep.created_volumes.into_iter().map(|(d, _)| d).collect())
 }
 
 fn midpoint(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
     [0, 1, 2].map(|k| 0.5 * (a[k] + b[k]))
 }
 
-/// One dart and the box of every volume of the map.
-fn volume_boxes(map: &CMap3) -> Vec<(Dart, Aabb)> {
-    let mut w = OrbitWalker::new();
-    map.cells(Orbit::Volume).map(|d| (d, volume_box(map, d, &mut w))).collect()
+/// Each of `volumes` with its box.
+fn boxes_of(map: &CMap3, volumes: &[Dart]) -> Vec<(Dart, Aabb)> {
+    volumes.par_iter().map_init(OrbitWalker::new, |w, &d| (d, volume_box(map, d, w))).collect()
 }
 
 /// Removes from the map the volumes outside `surface` that it does not touch, and

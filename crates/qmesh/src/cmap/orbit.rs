@@ -253,14 +253,21 @@ fn stack_if_new<V: Visited>(seen: &V, stack: &mut Vec<u32>, n: u32) {
 }
 
 /// Reusable traversal state for collecting single orbits without allocating per call.
-/// Visited darts are bits of a set as large as the map, cleared dart by dart at the next
-/// walk (a hash set costs ~10 % of a subdivision).
+/// The first walks record visited darts in a hash set; a walker used more than
+/// [`HASHED_WALKS`] times switches to a bit set as large as the map, cleared dart by
+/// dart before each walk (the hash set costs ~10 % of a subdivision; the bit set would
+/// cost a map-sized allocation to a walker made for one orbit).
 #[derive(Clone, Debug, Default)]
 pub struct OrbitWalker {
-    seen: BitSet,
+    hashed: FxHashSet<u32>,
+    bits: BitSet,
+    walks: u32,
     stack: Vec<u32>,
     out: Vec<Dart>,
 }
+
+/// Walks an [`OrbitWalker`] makes with its hash set before it takes a bit set.
+const HASHED_WALKS: u32 = 32;
 
 impl OrbitWalker {
     pub fn new() -> Self {
@@ -269,19 +276,31 @@ impl OrbitWalker {
 
     /// The darts of the orbit of `start`, in traversal order (start first).
     pub fn collect(&mut self, map: &CMap3, start: Dart, orbit: Orbit) -> &[Dart] {
-        for d in &self.out {
-            self.seen.remove(d.raw() as usize);
+        if self.walks < HASHED_WALKS {
+            self.walks += 1;
+            self.hashed.clear();
+            self.out.clear();
+            let out = &mut self.out;
+            walk_orbit(map, start, orbit, &mut self.hashed, &mut self.stack, |d| out.push(d));
+        } else {
+            if self.walks == HASHED_WALKS {
+                self.walks += 1;
+                self.out.clear();
+            }
+            for d in &self.out {
+                self.bits.remove(d.raw() as usize);
+            }
+            self.out.clear();
+            self.bits.grow(map.dart_capacity());
+            let out = &mut self.out;
+            walk_orbit(map, start, orbit, &mut self.bits, &mut self.stack, |d| out.push(d));
         }
-        self.out.clear();
-        self.seen.grow(map.dart_capacity());
-        let out = &mut self.out;
-        walk_orbit(map, start, orbit, &mut self.seen, &mut self.stack, |d| out.push(d));
         &self.out
     }
 
     /// Whether `d` was reached by the last [`collect`](Self::collect).
     pub fn contains(&self, d: Dart) -> bool {
-        self.seen.get(d.raw() as usize)
+        if self.walks <= HASHED_WALKS { self.hashed.contains(&d.raw()) } else { self.bits.get(d.raw() as usize) }
     }
 }
 
@@ -347,10 +366,8 @@ impl CMap3 {
 
     /// The darts of the orbit of `d` (allocates; loops should reuse an [`OrbitWalker`]).
     pub fn orbit(&self, d: Dart, orbit: Orbit) -> Vec<Dart> {
-        // A hash set: a walker's bit set would be as large as the map, for one orbit.
-        let (mut seen, mut stack, mut out) = (FxHashSet::default(), Vec::new(), Vec::new());
-        walk_orbit(self, d, orbit, &mut seen, &mut stack, |x| out.push(x));
-        out
+        let mut w = OrbitWalker::new();
+        w.collect(self, d, orbit).to_vec()
     }
 
     /// Runs `f` with the map's scratch walker (for `&mut self` operations).

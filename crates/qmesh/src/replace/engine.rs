@@ -8,10 +8,15 @@ use super::face::align_face;
 use crate::cmap::{CMap3, Dart, MapError, Orbit};
 use crate::modify::{FacePattern, VolumePattern};
 use crate::pattern::{FlagRule, PatternKind, PatternSet, flag_corners_on};
+use rayon::prelude::*;
 use rustc_hash::FxHashMap;
 
 use crate::geom::centroid;
 use crate::signature::{Flags, Signature, Surface, face_signature, match_direct, volume_signature_from};
+
+/// Cells looked up in parallel before their replacements are applied (bounds the
+/// memory of the pending matches).
+pub const LOOKUP_CHUNK: usize = 4096;
 
 /// Options of [`query_replace`].
 #[derive(Clone, Copy, Debug)]
@@ -125,7 +130,12 @@ pub fn query_replace(map: &mut CMap3, set: &PatternSet, opts: &ReplaceOptions) -
 /// The f and v passes of query-replace restricted to the given faces and volumes (one
 /// dart each), with the caller's flags: what the applications use (2022 §7), which
 /// split edges and set flags themselves. List each face once (either side): a face
-/// shared by two volumes is replaced on both sides at once.
+/// shared by two volumes is replaced on both sides at once; and each volume once.
+///
+/// Replacing a face leaves every other face's cycle and flags as they were, and
+/// replacing a volume every other volume's boundary, so the patterns are looked up on
+/// all cores, [`LOOKUP_CHUNK`] cells at a time, then applied in the order given: the
+/// same map as one cell at a time, whatever the number of threads.
 pub fn replace_cells(
     map: &mut CMap3,
     set: &PatternSet,
@@ -139,22 +149,24 @@ pub fn replace_cells(
     let has = |k: PatternKind| set.count(k) > 0;
     if has(PatternKind::Face) {
         let mut plans: Vec<Option<Option<FacePattern>>> = vec![None; set.patterns.len()];
-        for &d in faces {
+        for chunk in faces.chunks(LOOKUP_CHUNK) {
             let t = Instant::now();
-            let found = find_face(map, set, flags, d, use_signatures);
+            let found: Vec<_> = chunk.par_iter().map(|&d| find_face(map, set, flags, d, use_signatures)).collect();
             r.query_seconds += t.elapsed().as_secs_f64();
             let t = Instant::now();
-            match found {
-                Some((i, aligned)) => {
-                    if let Some(plan) = plans[i].get_or_insert_with(|| FacePattern::new(&set.patterns[i])) {
-                        plan.replace(map, &aligned);
+            for (&d, found) in chunk.iter().zip(found) {
+                match found {
+                    Some((i, aligned)) => {
+                        if let Some(plan) = plans[i].get_or_insert_with(|| FacePattern::new(&set.patterns[i])) {
+                            plan.replace(map, &aligned);
+                        }
+                        r.matches[i] += 1;
+                        r.faces_replaced += 1;
                     }
-                    r.matches[i] += 1;
-                    r.faces_replaced += 1;
-                }
-                None => {
-                    r.unmatched_faces += 1;
-                    coverage.add(map, PatternKind::Face, face_signature(map, flags, d), d);
+                    None => {
+                        r.unmatched_faces += 1;
+                        coverage.add(map, PatternKind::Face, face_signature(map, flags, d), d);
+                    }
                 }
             }
             r.replace_seconds += t.elapsed().as_secs_f64();
@@ -163,25 +175,27 @@ pub fn replace_cells(
     if has(PatternKind::Volume) {
         // Each v-pattern's plan is made once, when it first matches.
         let mut plans: Vec<Option<Option<VolumePattern>>> = vec![None; set.patterns.len()];
-        for &d in volumes {
+        for chunk in volumes.chunks(LOOKUP_CHUNK) {
             let t = Instant::now();
-            let found = find_volume(map, set, flags, d, use_signatures);
+            let found: Vec<_> = chunk.par_iter().map(|&d| find_volume(map, set, flags, d, use_signatures)).collect();
             r.query_seconds += t.elapsed().as_secs_f64();
             let t = Instant::now();
-            let replaced = found.and_then(|(i, start)| {
-                let plan = plans[i].get_or_insert_with(|| VolumePattern::new(&set.patterns[i])).as_ref()?;
-                plan.replace(map, start, flags).map(|c| (i, c))
-            });
-            match replaced {
-                Some((i, created)) => {
-                    r.matches[i] += 1;
-                    r.volumes_replaced += 1;
-                    record_children(map, &created, i as u32, &mut r.created_volumes);
-                }
-                None => {
-                    r.unmatched_volumes += 1;
-                    if let Some((s, _, _)) = volume_signature_from(map, Surface::Cell, flags, d) {
-                        coverage.add(map, PatternKind::Volume, s, d);
+            for (&d, found) in chunk.iter().zip(found) {
+                let replaced = found.and_then(|(i, start)| {
+                    let plan = plans[i].get_or_insert_with(|| VolumePattern::new(&set.patterns[i])).as_ref()?;
+                    plan.replace(map, start, flags).map(|c| (i, c))
+                });
+                match replaced {
+                    Some((i, created)) => {
+                        r.matches[i] += 1;
+                        r.volumes_replaced += 1;
+                        record_children(map, &created, i as u32, &mut r.created_volumes);
+                    }
+                    None => {
+                        r.unmatched_volumes += 1;
+                        if let Some((s, _, _)) = volume_signature_from(map, Surface::Cell, flags, d) {
+                            coverage.add(map, PatternKind::Volume, s, d);
+                        }
                     }
                 }
             }
