@@ -143,3 +143,25 @@ fn bounding_box_root_gives_the_authors_counts() {
         assert!(qr.map.expect("map").is_valid().is_empty());
     }
 }
+
+/// The patterns are looked up on all cores: one thread or several give the same map.
+#[test]
+fn same_map_on_one_thread_and_on_four() {
+    let Some(dir) = common::data_dir() else { return };
+    let s = read_surface(&dir.join("surface/bunny.off"), None).expect("bunny");
+    let bvh = TriangleBvh::from_polygons(&s.points, (0..s.nb_polygons()).map(|i| s.polygon(i)));
+    let root = RootShape::BoundingBox { init: 1 };
+    let opts = SubdivideOptions { levels: 6, root, remove_outside: true, ..Default::default() };
+    let on = |threads| {
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().expect("a pool");
+        pool.install(|| subdivide(&bvh, &opts, None, &|_| {}).expect("subdivide"))
+    };
+    let (one, four) = (on(1), on(4));
+    assert_eq!(one.mesh, four.mesh);
+    // The authors' figures; the last level alone looks up several chunks of faces.
+    assert_eq!((four.report.faces_replaced, four.report.volumes_replaced), (22018, 5671));
+    assert!(four.report.faces_replaced > 4 * qmesh::replace::LOOKUP_CHUNK);
+    let (a, b) = (one.map.expect("map"), four.map.expect("map"));
+    assert_eq!(a.nb_darts(), b.nb_darts());
+    assert!(a.darts().all(|d| (0..=3).all(|i| a.beta(d, i) == b.beta(d, i))), "dart for dart");
+}

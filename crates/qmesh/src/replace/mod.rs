@@ -5,6 +5,8 @@ mod engine;
 mod face;
 mod volume;
 
-pub use engine::{ReplaceOptions, ReplaceReport, Uncovered, find_face, find_volume, query_replace, replace_cells};
+pub use engine::{
+    LOOKUP_CHUNK, ReplaceOptions, ReplaceReport, Uncovered, find_face, find_volume, query_replace, replace_cells,
+};
 pub use face::{align_face, replace_face};
 pub use volume::replace_volume;
