@@ -107,6 +107,7 @@ pub fn subdivide(
     let t = Instant::now();
     let start = initial_tree(surface, opts.root, opts.margin);
     let root = start.root;
+    let mut hanging = None;
     let (mut tree, map, mut report) = if opts.direct {
         let (tree, r) = subdivide_direct(start, surface, opts.levels, opts.remove_outside, progress);
         (tree, None, r)
@@ -117,7 +118,15 @@ pub fn subdivide(
             let mut last = boxes_of(&map, &fresh);
             r.removed_outside += remove_outside_volumes(&mut map, root, surface, &mut last)?;
         }
-        let cells = boxes_of(&map, &map.cells(Orbit::Volume).collect::<Vec<_>>());
+        let volumes: Vec<Dart> = map.cells(Orbit::Volume).collect();
+        let cells = boxes_of(&map, &volumes);
+        hanging = Some(
+            volumes
+                .par_iter()
+                .map_init(OrbitWalker::new, |w, &d| w.collect(&map, d, Orbit::Volume).len() > 24)
+                .filter(|&h| h)
+                .count(),
+        );
         let tree = Octree { root, leaves: cells.iter().map(|(_, b)| cell_of(root, b)).collect() };
         (tree, Some(map), r)
     };
@@ -126,10 +135,7 @@ pub fn subdivide(
     }
     let mesh = tree.to_mesh();
     report.volumes = tree.leaves.len();
-    report.with_hanging_vertices = map.as_ref().map(|m| {
-        let mut w = OrbitWalker::new();
-        m.cells(Orbit::Volume).filter(|&d| w.collect(m, d, Orbit::Volume).len() > 24).count()
-    });
+    report.with_hanging_vertices = hanging;
     report.per_level = vec![0; usize::from(opts.levels) + 1];
     tree.leaves.iter().for_each(|c| report.per_level[usize::from(c.level)] += 1);
     report.seconds = t.elapsed().as_secs_f64();
