@@ -8,7 +8,10 @@ use proptest::prelude::*;
 use qmesh::build::{BuildOptions, build_volume_map};
 use qmesh::cmap::{CMap3, Dart, Orbit};
 use qmesh::pattern::{FlagRule, PatternKind, load_pattern, load_pattern_dir};
-use qmesh::signature::{Flags, Surface, match_direct, volume_signature};
+use qmesh::signature::{
+    Flags, Signature, Surface, match_direct, signature_shape, start_with_signature, volume_shape, volume_signature,
+    volume_signature_from,
+};
 
 /// The same map with its darts created in the order given by `perm` (a permutation of
 /// the live darts), marks and vertex ids carried over.
@@ -148,12 +151,8 @@ fn pattern_signatures_collide_only_for_isomorphic_boundaries() {
     assert!(pairs > 100, "only {pairs} comparable pairs");
 }
 
-/// On random cells of a real mesh with random edge splits (flags on original darts),
-/// equal signatures ⇔ the direct isomorphism test matches.
-#[cfg_attr(not(qmesh_data), ignore = "needs the shared data folder ($QMESH_DATA)")]
-#[test]
-fn signature_equality_matches_direct_isomorphism_on_random_cells() {
-    let Some(d) = common::data_dir() else { return };
+/// Cells of a real mesh with random edge splits, flags on the original darts.
+fn randomly_split_cells(d: &std::path::Path) -> (CMap3, Vec<Dart>, Flags) {
     let mesh = qmesh::io::read(&d.join("hex/gmsh_box_hex_4x4x4.vtk"), None).unwrap();
     let qmesh::io::Loaded::Indexed(mesh) = mesh else { panic!() };
     let (mut m, _) = build_volume_map(&mesh, &BuildOptions::default()).unwrap();
@@ -167,7 +166,16 @@ fn signature_equality_matches_direct_isomorphism_on_random_cells() {
     }
     assert!(m.is_valid().is_empty());
     let cells: Vec<Dart> = m.cells(Orbit::Volume).collect();
-    let flags = Flags::Mark(flag);
+    (m, cells, Flags::Mark(flag))
+}
+
+/// On random cells of a real mesh with random edge splits (flags on original darts),
+/// equal signatures ⇔ the direct isomorphism test matches.
+#[cfg_attr(not(qmesh_data), ignore = "needs the shared data folder ($QMESH_DATA)")]
+#[test]
+fn signature_equality_matches_direct_isomorphism_on_random_cells() {
+    let Some(d) = common::data_dir() else { return };
+    let (m, cells, flags) = randomly_split_cells(&d);
     let sig: Vec<_> = cells.iter().map(|&c| volume_signature(&m, Surface::Cell, flags, c).unwrap().0).collect();
     let (mut same, mut different) = (0, 0);
     for i in 0..cells.len() {
@@ -179,6 +187,34 @@ fn signature_equality_matches_direct_isomorphism_on_random_cells() {
         }
     }
     assert!(same > 0 && different > 0, "{same} isomorphic pairs, {different} not");
+}
+
+/// The direct search for a known signature's start finds a start exactly when the
+/// cell has that signature, and then the one that minimising over every start finds.
+#[cfg_attr(not(qmesh_data), ignore = "needs the shared data folder ($QMESH_DATA)")]
+#[test]
+fn start_with_signature_is_the_minimising_start() {
+    let Some(d) = common::data_dir() else { return };
+    let (m, cells, flags) = randomly_split_cells(&d);
+    let found: Vec<_> = cells.iter().map(|&c| volume_signature_from(&m, Surface::Cell, flags, c).unwrap()).collect();
+    let (mut hits, mut misses) = (0, 0);
+    for (i, (s, _, _)) in found.iter().enumerate().step_by(3) {
+        let Signature::Volume(w) = s else { panic!("a v-signature") };
+        for (j, &c) in cells.iter().enumerate() {
+            let start = start_with_signature(&m, Surface::Cell, flags, c, w);
+            assert_eq!(start.is_some(), found[j].0 == *s, "cells {i}, {j}");
+            if found[j].0 == *s {
+                assert_eq!(volume_shape(&m, Surface::Cell, flags, c), Some(signature_shape(w)), "an invariant");
+            }
+            if let Some(t) = start {
+                assert_eq!(t, found[j].2, "cells {i}, {j}");
+                hits += 1;
+            } else {
+                misses += 1;
+            }
+        }
+    }
+    assert!(hits > 10 && misses > 10, "{hits} hits, {misses} misses");
 }
 
 /// User marks: with `FlagRule::File`, the darts whose `.moka` g-dart carries an effective

@@ -8,7 +8,9 @@ use super::flags::FlagRule;
 use super::load::load_pattern;
 use super::{Pattern, PatternKind};
 use crate::io::Format;
-use crate::signature::Signature;
+#[cfg(doc)]
+use crate::signature::volume_shape;
+use crate::signature::{Signature, signature_shape};
 
 /// A file of a patterns folder that was not loaded, and why.
 #[derive(Debug, Clone)]
@@ -24,12 +26,19 @@ pub struct PatternSet {
     pub patterns: Vec<Pattern>,
     pub skipped: Vec<Skipped>,
     index: FxHashMap<Signature, Vec<usize>>,
+    /// Per v-signature shape (darts, flagged darts), the first pattern of each distinct
+    /// signature with that shape.
+    volume_shapes: FxHashMap<(usize, usize), Vec<usize>>,
 }
 
 impl PatternSet {
     /// Adds a pattern; returns its index.
     pub fn insert(&mut self, p: Pattern) -> usize {
         let i = self.patterns.len();
+        let first = !self.index.contains_key(&p.signature);
+        if let (true, Signature::Volume(w)) = (first, &p.signature) {
+            self.volume_shapes.entry(signature_shape(w)).or_default().push(i);
+        }
         self.index.entry(p.signature.clone()).or_default().push(i);
         self.patterns.push(p);
         i
@@ -43,6 +52,13 @@ impl PatternSet {
     /// Index of the pattern whose boundary has this signature.
     pub fn lookup_index(&self, s: &Signature) -> Option<usize> {
         self.index.get(s).map(|v| v[0])
+    }
+
+    /// The v-patterns (one per distinct signature) whose boundary has `shape` (darts,
+    /// flagged darts; see [`volume_shape`]): the only ones a volume of that shape can
+    /// match.
+    pub fn volume_candidates(&self, shape: (usize, usize)) -> &[usize] {
+        self.volume_shapes.get(&shape).map_or(&[], |v| v.as_slice())
     }
 
     /// Groups of patterns (indices) sharing one signature.

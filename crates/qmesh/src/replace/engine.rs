@@ -12,7 +12,9 @@ use rayon::prelude::*;
 use rustc_hash::FxHashMap;
 
 use crate::geom::centroid;
-use crate::signature::{Flags, Signature, Surface, face_signature, match_direct, volume_signature_from};
+use crate::signature::{
+    Flags, Signature, Surface, face_signature, match_direct, start_with_signature, volume_shape, volume_signature_from,
+};
 
 /// Cells looked up in parallel before their replacements are applied (bounds the
 /// memory of the pending matches).
@@ -248,8 +250,21 @@ pub fn find_face(
 /// pattern's canonical start.
 pub fn find_volume(map: &CMap3, set: &PatternSet, flags: Flags, d: Dart, by_signature: bool) -> Option<(usize, Dart)> {
     if by_signature {
-        let (sig, _, start) = volume_signature_from(map, Surface::Cell, flags, d)?;
-        return set.lookup_index(&sig).map(|i| (i, start));
+        // Only patterns of the volume's shape can match; when one signature has it, its
+        // start is found directly (the same start as by minimising, see
+        // `start_with_signature`).
+        let shape = volume_shape(map, Surface::Cell, flags, d)?;
+        return match set.volume_candidates(shape) {
+            [] => None,
+            &[i] => {
+                let Signature::Volume(w) = &set.patterns[i].signature else { return None };
+                start_with_signature(map, Surface::Cell, flags, d, w).map(|s| (i, s))
+            }
+            _ => {
+                let (sig, _, start) = volume_signature_from(map, Surface::Cell, flags, d)?;
+                set.lookup_index(&sig).map(|i| (i, start))
+            }
+        };
     }
     set.patterns.iter().enumerate().filter(|(_, p)| p.kind == PatternKind::Volume).find_map(|(i, p)| {
         match_direct((&p.map, Surface::PatternBoundary, Flags::Mark(p.flags), p.start), (map, Surface::Cell, flags, d))

@@ -10,7 +10,10 @@ mod volume;
 
 pub use face::{cycle_automorphisms, cycle_signature, face_signature, pattern_face_boundary, pattern_face_signature};
 pub use surface::Surface;
-pub use volume::{VolumeWord, match_direct, volume_signature, volume_signature_from, word_from};
+pub use volume::{
+    VolumeWord, match_direct, signature_shape, start_with_signature, volume_shape, volume_signature,
+    volume_signature_from, word_from,
+};
 
 use crate::cmap::{CMap3, Dart, Mark};
 

@@ -164,3 +164,76 @@ fn signature_with(
     }
     best.map(|(b, s)| (Signature::Volume(b), count, s))
 }
+
+/// The number of darts and of flagged darts of the closed surface of `any` (None when
+/// it is open): an invariant of its v-signature, read from it by [`signature_shape`].
+pub fn volume_shape(map: &CMap3, surface: Surface, flags: Flags, any: Dart) -> Option<(usize, usize)> {
+    with_labels(map, |label| {
+        let all = word_with(map, surface, flags, any, None, label)?;
+        Some((all.darts.len(), all.bits.iter().filter(|&&b| b == 1).count()))
+    })
+}
+
+/// The [`volume_shape`] of every surface with v-signature `s` (a word of two labels
+/// per dart, then one flag bit per dart).
+pub fn signature_shape(s: &[u32]) -> (usize, usize) {
+    let n = s.len() / 3;
+    (n, s[2 * n..].iter().filter(|&&b| b == 1).count())
+}
+
+/// The start dart that [`volume_signature_from`] would return for the surface of `any`
+/// if its v-signature is `expected`, and None when it is not: the starts are tried in
+/// the same order, each traversal stopping at its first symbol that differs, and the
+/// first to reproduce `expected` is the first to reach the minimal word. For a set
+/// whose only candidate for this surface is one pattern, this replaces minimising over
+/// every start (24 full traversals of a subdivided hexahedron) by about one.
+pub fn start_with_signature(map: &CMap3, surface: Surface, flags: Flags, any: Dart, expected: &[u32]) -> Option<Dart> {
+    with_labels(map, |label| {
+        let all = word_with(map, surface, flags, any, None, label)?;
+        let n = all.darts.len();
+        if 3 * n != expected.len() || signature_shape(expected) != (n, all.bits.iter().filter(|&&b| b == 1).count()) {
+            return None;
+        }
+        let flagged: Vec<Dart> = all.darts.iter().copied().filter(|&d| flags.get(map, d)).collect();
+        let starts = if flagged.is_empty() { all.darts } else { flagged };
+        starts.into_iter().find(|&s| {
+            let mut out = VolumeWord::default();
+            let same = exact_traversal(map, surface, s, &expected[..2 * n], label, &mut out);
+            for d in &out.darts {
+                label[d.idx()] = 0;
+            }
+            same && out.darts.iter().zip(&expected[2 * n..]).all(|(&d, &b)| u32::from(flags.get(map, d)) == b)
+        })
+    })
+}
+
+/// [`label_traversal`] that stops at the first symbol differing from `expected`;
+/// whether the whole word equals it.
+fn exact_traversal(
+    map: &CMap3,
+    surface: Surface,
+    start: Dart,
+    expected: &[u32],
+    label: &mut [u32],
+    out: &mut VolumeWord,
+) -> bool {
+    label[start.idx()] = 1;
+    out.darts.push(start);
+    let (mut k, mut at) = (0, 0);
+    while k < out.darts.len() {
+        let d = out.darts[k];
+        k += 1;
+        for n in [Some(map.next(d)), surface.opposite(map, d)] {
+            let Some(n) = n else { return false };
+            if label[n.idx()] == 0 {
+                out.darts.push(n);
+                label[n.idx()] = out.darts.len() as u32;
+            }
+            if expected.get(at) != Some(&label[n.idx()]) {
+                return false;
+            }
+            at += 1;
+        }
+    }
+    at == expected.len()
+}
