@@ -35,9 +35,15 @@ pub(crate) fn cell_of(root: RootBox, b: &Aabb) -> OctCell {
 /// Flags with `mark` the darts of the volume of `d` (whose box is `b`) that start at a
 /// corner of the box and run along a box edge (their end shares two coordinates).
 pub(crate) fn flag_box_corners(map: &mut CMap3, mark: Mark, d: Dart, b: &Aabb, w: &mut OrbitWalker) {
-    for &x in w.collect(map, d, Orbit::Volume) {
+    let volume = w.collect(map, d, Orbit::Volume).to_vec();
+    flag_box_corners_of(map, mark, &volume, b);
+}
+
+/// [`flag_box_corners`] on the darts of a volume already collected.
+pub(crate) fn flag_box_corners_of(map: &mut CMap3, mark: Mark, volume: &[Dart], b: &Aabb) {
+    let e = b.extent();
+    for &x in volume {
         let (p, q) = (map.point(x), map.point(map.next(x)));
-        let e = b.extent();
         let along_edge = (0..3).filter(|&k| (p[k] - q[k]).abs() <= LATTICE_TOL * e[k]).count() == 2;
         if along_edge && is_corner(b, p) {
             map.mark(x, mark);

@@ -7,7 +7,7 @@ use std::time::Instant;
 
 use rayon::prelude::*;
 
-use super::box_cells::{cell_of, flag_box_corners, is_corner, volume_box};
+use super::box_cells::{cell_of, flag_box_corners_of, is_corner, volume_box};
 use super::generated_patterns::{GeneratedKind, given_or_generated};
 use super::octree::{OctCell, Octree, RootBox};
 use crate::build::{BuildOptions, IndexedMesh, build_map};
@@ -237,7 +237,8 @@ fn subdivide_qr(
 /// level of difference with a neighbour"). Returns (level, volume dart) pairs.
 fn balance_closure(map: &mut CMap3, seeds: &[Dart], seed_level: i32) -> Result<Vec<(i32, Dart)>, MapError> {
     let in_plan = map.reserve_mark()?;
-    let mut w = OrbitWalker::new();
+    let (mut w, mut e) = (OrbitWalker::new(), OrbitWalker::new());
+    let (mut darts, mut around) = (Vec::new(), Vec::new());
     let mut plan: Vec<(i32, Dart)> = Vec::with_capacity(seeds.len());
     for &d in seeds {
         add_to_plan(map, &mut w, in_plan, (seed_level, d), &mut plan);
@@ -246,9 +247,12 @@ fn balance_closure(map: &mut CMap3, seeds: &[Dart], seed_level: i32) -> Result<V
     while next < plan.len() {
         let (l, d) = plan[next];
         next += 1;
-        let darts = w.collect(map, d, Orbit::Volume).to_vec();
-        for x in darts {
-            for y in map.orbit(x, Orbit::Edge) {
+        darts.clear();
+        darts.extend_from_slice(w.collect(map, d, Orbit::Volume));
+        for &x in &darts {
+            around.clear();
+            around.extend_from_slice(e.collect(map, x, Orbit::Edge));
+            for &y in &around {
                 let ly = map.label_of(y);
                 if ly < l && !map.is_marked(y, in_plan) {
                     add_to_plan(map, &mut w, in_plan, (ly, y), &mut plan);
@@ -279,17 +283,27 @@ fn refine(
     r: &mut SubdivideReport,
 ) -> Result<Vec<Dart>, MapError> {
     let mut w = OrbitWalker::new();
-    let old_darts: Vec<Dart> = cells.iter().flat_map(|&d| w.collect(map, d, Orbit::Volume).to_vec()).collect();
-    let boxes: Vec<Aabb> = cells.iter().map(|&d| volume_box(map, d, &mut w)).collect();
+    let mut e = OrbitWalker::new();
+    // Each cell's darts (old_darts[ends[i - 1]..ends[i]]) and box.
+    let mut old_darts: Vec<Dart> = Vec::new();
+    let mut ends = Vec::with_capacity(cells.len());
+    for &d in cells {
+        old_darts.extend_from_slice(w.collect(map, d, Orbit::Volume));
+        ends.push(old_darts.len());
+    }
+    let darts_of = |i: usize| (if i == 0 { 0 } else { ends[i - 1] })..ends[i];
+    let boxes: Vec<Aabb> =
+        (0..cells.len()).map(|i| Aabb::of(old_darts[darts_of(i)].iter().map(|&x| map.point(x)))).collect();
     // Whole edges: both ends at corners of the cell (split ones end at a midpoint).
     let seen = map.reserve_mark()?;
     let mut edges = Vec::new();
-    for (&d, b) in cells.iter().zip(&boxes) {
-        for &x in w.collect(map, d, Orbit::Volume) {
+    for (i, b) in boxes.iter().enumerate() {
+        for &x in &old_darts[darts_of(i)] {
             if !map.is_marked(x, seen) && is_corner(b, map.point(x)) && is_corner(b, map.point(map.next(x))) {
                 edges.push((x, midpoint(map.point(x), map.point(map.next(x)))));
-                let around = map.orbit(x, Orbit::Edge);
-                around.into_iter().for_each(|e| map.mark(e, seen));
+                for &y in e.collect(map, x, Orbit::Edge) {
+                    map.mark(y, seen);
+                }
             }
         }
     }
@@ -301,13 +315,17 @@ fn refine(
     let flag = map.reserve_mark()?;
     let seen = map.reserve_mark()?;
     let mut faces = Vec::new();
+    let mut volume = Vec::new();
     for (&d, b) in cells.iter().zip(&boxes) {
-        flag_box_corners(map, flag, d, b, &mut w);
-        for &x in w.collect(map, d, Orbit::Volume) {
+        volume.clear();
+        volume.extend_from_slice(w.collect(map, d, Orbit::Volume));
+        flag_box_corners_of(map, flag, &volume, b);
+        for &x in &volume {
             if !map.is_marked(x, seen) {
                 faces.push(x);
-                let face = map.orbit(x, Orbit::Face);
-                face.into_iter().for_each(|f| map.mark(f, seen));
+                for &f in e.collect(map, x, Orbit::Face) {
+                    map.mark(f, seen);
+                }
             }
         }
     }
@@ -333,7 +351,13 @@ fn midpoint(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
 
 /// Each of `volumes` with its box.
 fn boxes_of(map: &CMap3, volumes: &[Dart]) -> Vec<(Dart, Aabb)> {
-    volumes.par_iter().map_init(OrbitWalker::new, |w, &d| (d, volume_box(map, d, w))).collect()
+    volumes
+        .par_chunks(1024)
+        .flat_map_iter(|c| {
+            let mut w = OrbitWalker::new();
+            c.iter().map(move |&d| (d, volume_box(map, d, &mut w)))
+        })
+        .collect()
 }
 
 /// Removes from the map the volumes outside `surface` that it does not touch, and
