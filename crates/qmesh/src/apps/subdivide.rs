@@ -16,7 +16,7 @@ use crate::geom::{Aabb, TriangleBvh};
 use crate::pattern::PatternSet;
 use crate::replace::replace_cells;
 use crate::signature::Flags;
-use rustc_hash::FxHashSet;
+use rustc_hash::{FxHashMap, FxHashSet};
 
 /// The level-0 cells of [`subdivide`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -112,23 +112,14 @@ pub fn subdivide(
         let (tree, r) = subdivide_direct(start, surface, opts.levels, opts.remove_outside, progress);
         (tree, None, r)
     } else {
-        let (mut map, mut r, fresh) = subdivide_qr(start, surface, opts, patterns, progress)?;
-        if opts.remove_outside {
-            // What the last level left outside (the levels before removed theirs).
-            let mut last = boxes_of(&map, &fresh);
-            r.removed_outside += remove_outside_volumes(&mut map, root, surface, &mut last)?;
-        }
-        let volumes: Vec<Dart> = map.cells(Orbit::Volume).collect();
-        let cells = boxes_of(&map, &volumes);
-        hanging = Some(
-            volumes
-                .par_iter()
-                .map_init(OrbitWalker::new, |w, &d| w.collect(&map, d, Orbit::Volume).len() > 24)
-                .filter(|&h| h)
-                .count(),
-        );
-        let tree = Octree { root, leaves: cells.iter().map(|(_, b)| cell_of(root, b)).collect() };
-        (tree, Some(map), r)
+        let (map, r, leaves) = subdivide_qr(start, surface, opts, patterns, progress)?;
+        let with_hanging = |c: &[Dart]| {
+            let mut w = OrbitWalker::new();
+            c.iter().filter(|&&d| w.collect(&map, d, Orbit::Volume).len() > 24).count()
+        };
+        let darts: Vec<Dart> = leaves.values().copied().collect();
+        hanging = Some(darts.par_chunks(1024).map(with_hanging).sum());
+        (Octree { root, leaves: leaves.into_keys().collect() }, Some(map), r)
     };
     if opts.direct && opts.remove_outside {
         report.removed_outside += prune_outside(&mut tree, surface);
@@ -189,30 +180,40 @@ fn subdivide_direct(
     (tree, r)
 }
 
+/// The query-replace subdivision: the map, and its leaves (one dart of each volume).
 fn subdivide_qr(
     start: Octree,
     surface: &TriangleBvh,
     opts: &SubdivideOptions,
     patterns: Option<&PatternSet>,
     progress: &dyn Fn(u8),
-) -> Result<(CMap3, SubdivideReport, Vec<Dart>), MapError> {
+) -> Result<(CMap3, SubdivideReport, FxHashMap<OctCell, Dart>), MapError> {
     let mut generated = None;
     let set = given_or_generated(patterns, GeneratedKind::HexSubdivision, &mut generated);
+    let root = start.root;
     let mut map = build_map(start.to_mesh(), &BuildOptions::default()).expect("a grid of boxes builds").0;
     // Each dart's label is the level of its volume (replacements copy labels to the
     // darts they create; children are relabelled after each refinement).
     map.enable_labels();
     let mut r = SubdivideReport::default();
+    let mut leaves: FxHashMap<OctCell, Dart> = FxHashMap::default();
     // The volumes made by the last level: the only ones the surface may touch, or that
     // may be outside and untouched, among the cells of their level (the older leaves
     // were refined, removed or found inside; balance refines inside cells only).
     let mut fresh: Vec<Dart> = map.cells(Orbit::Volume).collect();
-    for level in 1..=opts.levels {
-        progress(level);
+    for level in 1..=opts.levels + 1 {
         let mut cells = boxes_of(&map, &fresh);
+        leaves.extend(cells.iter().map(|(d, b)| (cell_of(root, b), *d)));
         if opts.remove_outside {
-            r.removed_outside += remove_outside_volumes(&mut map, start.root, surface, &mut cells)?;
+            for (_, b) in remove_outside_volumes(&mut map, root, surface, &mut cells)? {
+                leaves.remove(&cell_of(root, &b));
+                r.removed_outside += 1;
+            }
         }
+        if level > opts.levels {
+            break; // the last level's cells only needed registering (and removing)
+        }
+        progress(level);
         let parent_level = i32::from(level) - 1;
         let touched: Vec<Dart> = cells
             .par_iter()
@@ -225,10 +226,14 @@ fn subdivide_qr(
         fresh.clear();
         for batch in plan.chunk_by(|a, b| a.0 == b.0) {
             let cells: Vec<Dart> = batch.iter().map(|&(_, d)| d).collect();
-            fresh.extend(refine(&mut map, set, &cells, batch[0].0 + 1, opts.use_signatures, &mut r)?);
+            let (children, parents) = refine(&mut map, set, &cells, batch[0].0 + 1, opts.use_signatures, &mut r)?;
+            parents.iter().for_each(|b| {
+                leaves.remove(&cell_of(root, b));
+            });
+            fresh.extend(children);
         }
     }
-    Ok((map, r, fresh))
+    Ok((map, r, leaves))
 }
 
 /// The cells to split with `seeds` (all at level `seed_level`) so that 2:1 balance
@@ -273,7 +278,7 @@ fn add_to_plan(map: &mut CMap3, w: &mut OrbitWalker, in_plan: Mark, cell: (i32, 
 
 /// One refinement step of Algorithm 5 on the volumes of `cells`: split their whole
 /// edges, flag the darts at their corners, query-replace their faces, then themselves.
-/// Returns one dart of each child.
+/// Returns one dart of each child, and the cells' boxes.
 fn refine(
     map: &mut CMap3,
     set: &PatternSet,
@@ -281,7 +286,7 @@ fn refine(
     child_level: i32,
     use_signatures: bool,
     r: &mut SubdivideReport,
-) -> Result<Vec<Dart>, MapError> {
+) -> Result<(Vec<Dart>, Vec<Aabb>), MapError> {
     let mut w = OrbitWalker::new();
     let mut e = OrbitWalker::new();
     // Each cell's darts (old_darts[ends[i - 1]..ends[i]]) and box.
@@ -342,7 +347,7 @@ fn refine(
             }
         }
     }
-    Ok(rep.created_volumes.into_iter().map(|(d, _)| d).collect())
+    Ok((rep.created_volumes.into_iter().map(|(d, _)| d).collect(), boxes))
 }
 
 fn midpoint(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
@@ -360,23 +365,23 @@ fn boxes_of(map: &CMap3, volumes: &[Dart]) -> Vec<(Dart, Aabb)> {
         .collect()
 }
 
-/// Removes from the map the volumes outside `surface` that it does not touch, and
-/// from `cells` (the map's volumes and boxes); returns how many.
+/// Removes from the map the volumes of `cells` (volumes and boxes) outside `surface`
+/// that it does not touch, and from `cells`; returns them.
 fn remove_outside_volumes(
     map: &mut CMap3,
     root: RootBox,
     surface: &TriangleBvh,
     cells: &mut Vec<(Dart, Aabb)>,
-) -> Result<usize, MapError> {
+) -> Result<Vec<(Dart, Aabb)>, MapError> {
     let tree = Octree { root, leaves: cells.iter().map(|(_, b)| cell_of(root, b)).collect() };
     let outside: FxHashSet<OctCell> = tree.outside_leaves(surface).into_iter().collect();
     if outside.is_empty() {
-        return Ok(0);
+        return Ok(Vec::new());
     }
     let (gone, kept): (Vec<_>, Vec<_>) = cells.drain(..).partition(|(_, b)| outside.contains(&cell_of(root, b)));
     *cells = kept;
     for &(d, _) in &gone {
         map.remove_volume(d)?;
     }
-    Ok(gone.len())
+    Ok(gone)
 }
