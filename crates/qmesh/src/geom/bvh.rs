@@ -69,30 +69,87 @@ fn area_vector(t: &[[f64; 3]; 3]) -> [f64; 3] {
 }
 
 impl TriangleBvh {
-    /// Builds the tree (median split on the longest axis of the centroids).
-    pub fn new(mut triangles: Vec<[[f64; 3]; 3]>) -> TriangleBvh {
-        let mut nodes = Vec::with_capacity(2 * triangles.len() / LEAF_SIZE + 1);
-        if !triangles.is_empty() {
-            nodes.push(Self::leaf(&triangles, 0, triangles.len()));
+    /// Builds the tree (median split on the longest axis of the centroids). The split
+    /// moves triangle indices over centroids computed once; the far-field data of inner
+    /// nodes are merged from their children's.
+    pub fn new(triangles: Vec<[[f64; 3]; 3]>) -> TriangleBvh {
+        let n = triangles.len();
+        let centroids: Vec<[f64; 3]> = triangles.iter().map(tri_centroid).collect();
+        let mut order: Vec<u32> = (0..n as u32).collect();
+        let mut nodes = Vec::with_capacity(2 * n / LEAF_SIZE + 1);
+        let span = |start: usize, count: usize| Node {
+            bounds: Aabb::EMPTY,
+            start: start as u32,
+            count: count as u32,
+            left: 0,
+            area_normal: [0.0; 3],
+            centre: [0.0; 3],
+            radius: 0.0,
+        };
+        if n > 0 {
+            nodes.push(span(0, n));
             let mut stack = vec![0usize];
             while let Some(i) = stack.pop() {
                 let (start, count) = (nodes[i].start as usize, nodes[i].count as usize);
                 if count <= LEAF_SIZE {
                     continue;
                 }
-                let slice = &mut triangles[start..start + count];
-                let cb = Aabb::of(slice.iter().map(tri_centroid));
+                let slice = &mut order[start..start + count];
+                let cb = Aabb::of(slice.iter().map(|&t| centroids[t as usize]));
                 let e = cb.extent();
                 let axis = (0..3).max_by(|&a, &b| e[a].total_cmp(&e[b])).unwrap_or(0);
                 let mid = count / 2;
-                slice.select_nth_unstable_by(mid, |a, b| tri_centroid(a)[axis].total_cmp(&tri_centroid(b)[axis]));
+                slice.select_nth_unstable_by(mid, |&a, &b| {
+                    centroids[a as usize][axis].total_cmp(&centroids[b as usize][axis])
+                });
                 let left = nodes.len();
-                nodes.push(Self::leaf(&triangles, start, mid));
-                nodes.push(Self::leaf(&triangles, start + mid, count - mid));
+                nodes.push(span(start, mid));
+                nodes.push(span(start + mid, count - mid));
                 nodes[i].count = 0;
                 nodes[i].left = left as u32;
                 stack.extend([left, left + 1]);
             }
+        }
+        let triangles: Vec<[[f64; 3]; 3]> = order.iter().map(|&t| triangles[t as usize]).collect();
+        // Children come after their parent: fill the nodes from the last one.
+        let mut sums = vec![([0.0; 3], 0.0); nodes.len()]; // area-weighted centroid sum, area
+        for i in (0..nodes.len()).rev() {
+            let node = nodes[i];
+            let (bounds, an, weighted, area) = if node.count > 0 {
+                let tris = &triangles[node.start as usize..(node.start + node.count) as usize];
+                let (mut an, mut weighted, mut area) = ([0.0; 3], [0.0; 3], 0.0);
+                for t in tris {
+                    let a = area_vector(t);
+                    let w = super::dot(a, a).sqrt();
+                    let c = tri_centroid(t);
+                    for k in 0..3 {
+                        an[k] += a[k];
+                        weighted[k] += w * c[k];
+                    }
+                    area += w;
+                }
+                (Aabb::of(tris.iter().flatten().copied()), an, weighted, area)
+            } else {
+                let (l, r) = (node.left as usize, node.left as usize + 1);
+                let (a, b) = (&nodes[l], &nodes[r]);
+                let bounds = Aabb {
+                    lo: [0, 1, 2].map(|k| a.bounds.lo[k].min(b.bounds.lo[k])),
+                    hi: [0, 1, 2].map(|k| a.bounds.hi[k].max(b.bounds.hi[k])),
+                };
+                let an = [0, 1, 2].map(|k| a.area_normal[k] + b.area_normal[k]);
+                let weighted = [0, 1, 2].map(|k| sums[l].0[k] + sums[r].0[k]);
+                (bounds, an, weighted, sums[l].1 + sums[r].1)
+            };
+            sums[i] = (weighted, area);
+            let centre = if area > 0.0 { weighted.map(|c| c / area) } else { bounds.centre() };
+            let radius = (0..8)
+                .map(|c| {
+                    let p = [0, 1, 2].map(|k| if c >> k & 1 == 0 { bounds.lo[k] } else { bounds.hi[k] });
+                    let d = sub(p, centre);
+                    super::dot(d, d).sqrt()
+                })
+                .fold(0.0, f64::max);
+            nodes[i] = Node { bounds, area_normal: an, centre, radius, ..node };
         }
         TriangleBvh { triangles, nodes }
     }
@@ -106,31 +163,6 @@ impl TriangleBvh {
             }
         }
         TriangleBvh::new(tris)
-    }
-
-    fn leaf(triangles: &[[[f64; 3]; 3]], start: usize, count: usize) -> Node {
-        let tris = &triangles[start..start + count];
-        let bounds = Aabb::of(tris.iter().flatten().copied());
-        let (mut an, mut weighted, mut area) = ([0.0; 3], [0.0; 3], 0.0);
-        for t in tris {
-            let a = area_vector(t);
-            let w = super::dot(a, a).sqrt();
-            let c = tri_centroid(t);
-            for k in 0..3 {
-                an[k] += a[k];
-                weighted[k] += w * c[k];
-            }
-            area += w;
-        }
-        let centre = if area > 0.0 { weighted.map(|c| c / area) } else { bounds.centre() };
-        let radius = (0..8)
-            .map(|c| {
-                let p = [0, 1, 2].map(|k| if c >> k & 1 == 0 { bounds.lo[k] } else { bounds.hi[k] });
-                let d = sub(p, centre);
-                super::dot(d, d).sqrt()
-            })
-            .fold(0.0, f64::max);
-        Node { bounds, start: start as u32, count: count as u32, left: 0, area_normal: an, centre, radius }
     }
 
     pub fn len(&self) -> usize {

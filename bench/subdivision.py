@@ -1,0 +1,71 @@
+#!/usr/bin/env python3
+"""Octree subdivision in the shape of 2022 Table 1 (issue 16): query-replace against
+hand-written boxes plus building the same map, on 1 and 2 threads, round-robin
+(bench/measure.py).
+
+For each surface and level: `qmesh subdivide --remove-outside` by query-replace on 2
+threads and on 1 (RAYON_NUM_THREADS=1), `--direct` boxes, and `qmesh info` on the direct
+output (its build time is building the same map from the boxes). Step times are the
+commands' own (`seconds`, `build_seconds`); wall times and peak memory are the
+processes'. Prints a Markdown table: volumes, #fqr, #vqr, the times, qr / (direct + map)
+and the speed-up of 2 threads over 1.
+
+usage: bench/subdivision.py [--runs N] [--levels 6,7,8] [--out DIR] [SURFACE...]"""
+import argparse
+import json
+import os
+import subprocess
+import sys
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+DATA = os.environ.get("QMESH_DATA", os.path.join(os.path.dirname(ROOT), "shared", "data"))
+Q = os.path.join(ROOT, "target", "release", "qmesh")
+SURFACES = ["armadillo.obj", "bunny.off", "fertility.off", "cgal_mesh3.off"]
+
+
+def sh(*cmd):
+    r = subprocess.run(cmd, capture_output=True, text=True)
+    if r.returncode != 0:
+        sys.exit(f"failed: {' '.join(cmd)}\n{r.stderr}")
+    return r.stdout
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--runs", type=int, default=3)
+    ap.add_argument("--levels", default="6,7,8")
+    ap.add_argument("--out", default="/tmp/qmesh-subdivision")
+    ap.add_argument("surfaces", nargs="*")
+    a = ap.parse_args()
+    os.makedirs(a.out, exist_ok=True)
+    sh("cargo", "build", "--release", "-q", "--manifest-path", os.path.join(ROOT, "Cargo.toml"))
+    print("| surface | level | volumes | #fqr | #vqr | qr s (2 threads) | qr s (1 thread) | speed-up "
+          "| direct s | map build s | direct + map s | qr / (direct + map) | qr wall s | qr MB |")
+    print("|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|")
+    for name in a.surfaces or SURFACES:
+        src = name if os.path.isabs(name) else os.path.join(DATA, "surface", name)
+        stem = os.path.splitext(os.path.basename(src))[0]
+        for level in [int(x) for x in a.levels.split(",")]:
+            base = [Q, "subdivide", src, "--levels", str(level), "--remove-outside", "--json", "--force"]
+            qr, direct = (os.path.join(a.out, f"{stem}_L{level}_{k}.vtk") for k in ("qr", "direct"))
+            sh(*base, "--direct", "-o", direct)  # the file `info` reads
+            res = sh(
+                sys.executable, os.path.join(ROOT, "bench", "measure.py"), str(a.runs),
+                "qr", "--", *base, "-o", qr, "---",
+                "qr1", "--", "env", "RAYON_NUM_THREADS=1", *base, "-o", qr + "1.vtk", "---",
+                "direct", "--", *base, "--direct", "-o", direct + "2.vtk", "---",
+                "map", "--", Q, "info", direct, "--json",
+            )
+            q2, q1, d, m = [json.loads(line) for line in res.splitlines() if line.strip()]
+            o = q2["output"]
+            if o["volumes"] != d["output"]["volumes"] or o["volumes"] != q1["output"]["volumes"]:
+                sys.exit(f"{stem} L{level}: the runs disagree on the volumes")
+            dm = d["output"]["seconds"] + m["output"]["build_seconds"]
+            print(f"| {stem} | {level} | {o['volumes']:,} | {o['faces_replaced']:,} | {o['volumes_replaced']:,} "
+                  f"| {o['seconds']:.3f} | {q1['output']['seconds']:.3f} "
+                  f"| {q1['output']['seconds'] / o['seconds']:.2f} "
+                  f"| {d['output']['seconds']:.3f} | {m['output']['build_seconds']:.3f} | {dm:.3f} "
+                  f"| {o['seconds'] / dm:.2f} | {q2['seconds']:.2f} | {q2['peak_rss_bytes'] / 1e6:.0f} |", flush=True)
+
+
+main()
