@@ -168,3 +168,52 @@ fn retry_until_done(
     }
     Ok(())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The unit cube tilted by `degrees` about the x or the y axis: the dart of the face
+    /// that was on top, and the cube.
+    fn tilted_cube(degrees: f64, about_x: bool) -> (CMap3, Dart) {
+        let (s, c) = degrees.to_radians().sin_cos();
+        let mut m = CMap3::new();
+        let v: Vec<u32> = (0..8)
+            .map(|i: u32| {
+                let [x, y, z] = [(i & 1) as f64, (i >> 1 & 1) as f64, (i >> 2) as f64];
+                m.add_vertex(if about_x {
+                    [x, c * y - s * z, s * y + c * z]
+                } else {
+                    [c * x + s * z, y, c * z - s * x]
+                })
+            })
+            .collect();
+        m.make_hexahedron([v[0], v[1], v[3], v[2], v[4], v[5], v[7], v[6]]);
+        // The top face: the one whose four vertices were at z = 1 (ids 4 to 7).
+        let top = m.darts().find(|&d| {
+            let mut x = d;
+            (0..4).all(|_| {
+                let up = m.vertex_of(x) >= 4;
+                x = m.next(x);
+                up
+            })
+        });
+        (m, top.expect("a top face"))
+    }
+
+    #[test]
+    fn a_face_points_up_within_sixty_degrees_of_z_on_its_outer_side() {
+        for about_x in [true, false] {
+            for (degrees, up) in [(0.0, true), (25.0, true), (-55.0, true), (59.0, true), (61.0, false), (-65.0, false)]
+            {
+                let (m, top) = tilted_cube(degrees, about_x);
+                let sides = [points_up(&m, top, 1.0), points_up(&m, top, -1.0)];
+                let expected = if up { 1 } else { 0 };
+                assert_eq!(sides.iter().filter(|&&s| s).count(), expected, "{degrees}° about {about_x}");
+            }
+        }
+        // A face upside down points up from the other side only.
+        let (m, top) = tilted_cube(180.0, true);
+        assert_ne!(points_up(&m, top, 1.0), points_up(&m, top, -1.0));
+    }
+}
