@@ -118,7 +118,7 @@ pub fn subdivide(
             c.iter().filter(|&&d| w.collect(&map, d, Orbit::Volume).len() > 24).count()
         };
         let darts: Vec<Dart> = leaves.values().copied().collect();
-        hanging = Some(darts.par_chunks(1024).map(with_hanging).sum());
+        hanging = Some(darts.par_chunks(walker_chunk(darts.len())).map(with_hanging).sum());
         (Octree { root, leaves: leaves.into_keys().collect() }, Some(map), r)
     };
     if opts.direct && opts.remove_outside {
@@ -354,10 +354,16 @@ fn midpoint(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
     [0, 1, 2].map(|k| 0.5 * (a[k] + b[k]))
 }
 
+/// Volumes per walker when `n` volumes are walked on all cores: a few chunks per thread,
+/// as each long-lived walker takes a bit set as large as the map.
+fn walker_chunk(n: usize) -> usize {
+    n.div_ceil(4 * rayon::current_num_threads()).max(1024)
+}
+
 /// Each of `volumes` with its box.
 fn boxes_of(map: &CMap3, volumes: &[Dart]) -> Vec<(Dart, Aabb)> {
     volumes
-        .par_chunks(1024)
+        .par_chunks(walker_chunk(volumes.len()))
         .flat_map_iter(|c| {
             let mut w = OrbitWalker::new();
             c.iter().map(move |&d| (d, volume_box(map, d, &mut w)))

@@ -5,7 +5,7 @@
 use std::time::Instant;
 
 use super::face::align_face;
-use crate::cmap::{CMap3, Dart, MapError, Orbit};
+use crate::cmap::{BitSet, CMap3, Dart, MapError, Orbit, OrbitWalker};
 use crate::modify::{FacePattern, VolumePattern};
 use crate::pattern::{FlagRule, PatternKind, PatternSet, flag_corners_on};
 use rayon::prelude::*;
@@ -177,6 +177,7 @@ pub fn replace_cells(
     if has(PatternKind::Volume) {
         // Each v-pattern's plan is made once, when it first matches.
         let mut plans: Vec<Option<Option<VolumePattern>>> = vec![None; set.patterns.len()];
+        let mut children = ChildRecorder::default();
         for chunk in volumes.chunks(LOOKUP_CHUNK) {
             let t = Instant::now();
             let found: Vec<_> = chunk.par_iter().map(|&d| find_volume(map, set, flags, d, use_signatures)).collect();
@@ -191,7 +192,7 @@ pub fn replace_cells(
                     Some((i, created)) => {
                         r.matches[i] += 1;
                         r.volumes_replaced += 1;
-                        record_children(map, &created, i as u32, &mut r.created_volumes);
+                        children.record(map, &created, i as u32, &mut r.created_volumes);
                     }
                     None => {
                         r.unmatched_volumes += 1;
@@ -208,15 +209,30 @@ pub fn replace_cells(
     r
 }
 
-/// One dart per volume among the `created` darts of a replacement (every new volume
-/// has an inner face, hence created darts).
-fn record_children(map: &CMap3, created: &[Dart], pattern: u32, out: &mut Vec<(Dart, u32)>) {
-    let mut seen: rustc_hash::FxHashSet<Dart> = rustc_hash::FxHashSet::default();
-    let mut w = crate::cmap::OrbitWalker::new();
-    for &c in created {
-        if seen.insert(c) {
-            seen.extend(w.collect(map, c, Orbit::Volume).iter().copied());
-            out.push((c, pattern));
+/// Finds one dart per volume among the `created` darts of a replacement (every new
+/// volume has an inner face, hence created darts), with a walker and a visited set
+/// kept from one replacement to the next.
+#[derive(Default)]
+struct ChildRecorder {
+    walker: OrbitWalker,
+    seen: BitSet,
+    visited: Vec<Dart>,
+}
+
+impl ChildRecorder {
+    fn record(&mut self, map: &CMap3, created: &[Dart], pattern: u32, out: &mut Vec<(Dart, u32)>) {
+        self.seen.grow(map.dart_capacity());
+        for &c in created {
+            if !self.seen.get(c.idx()) {
+                for &x in self.walker.collect(map, c, Orbit::Volume) {
+                    self.seen.insert(x.idx());
+                    self.visited.push(x);
+                }
+                out.push((c, pattern));
+            }
+        }
+        for d in self.visited.drain(..) {
+            self.seen.remove(d.idx());
         }
     }
 }
