@@ -139,8 +139,16 @@ fn bounding_box_root_gives_the_authors_counts() {
         let r = &qr.report;
         let hanging = r.with_hanging_vertices.expect("a map");
         assert_eq!([r.volumes, hanging, r.faces_replaced, r.volumes_replaced], figures, "l_max {levels}");
-        assert_eq!(qr.mesh, run(levels, 1, remove, true).mesh);
+        let direct = run(levels, 1, remove, true);
+        assert_eq!(qr.mesh, direct.mesh);
         assert!(qr.map.expect("map").is_valid().is_empty());
+        // The phases account for the query-replace run (none with `direct`).
+        let p = r.phases;
+        let phases = [p.start, p.contact, p.remove_outside, p.balance, p.split_edges, p.lookup, p.apply, p.finish];
+        assert!(p.lookup > 0.0 && p.apply > 0.0 && p.split_edges > 0.0 && p.contact > 0.0, "{p:?}");
+        assert_eq!(remove, p.remove_outside > 0.0);
+        assert!(phases.iter().sum::<f64>() <= r.seconds, "{p:?} in {} s", r.seconds);
+        assert_eq!(direct.report.phases.apply + direct.report.phases.lookup, 0.0);
     }
 }
 

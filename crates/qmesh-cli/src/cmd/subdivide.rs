@@ -104,6 +104,7 @@ pub fn run(a: Args) -> Result<ExitCode> {
             "darts": s.map.as_ref().map(|m| m.nb_darts()),
             "valid": validity,
             "seconds": r.seconds,
+            "phases": r.phases,
         });
         println!("{}", serde_json::to_string_pretty(&j)?);
     } else if !a.report.quiet {

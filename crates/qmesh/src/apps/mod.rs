@@ -30,7 +30,9 @@ pub use marching_cubes::{
 pub use mc_patterns::{mc_face_patterns, mc_pattern_set, mc_volume_patterns};
 pub use octree::{OctCell, Octree, RootBox};
 pub use recombine::{RecombineOptions, RecombineReport, Recombined, recombine, recombined_mesh};
-pub use subdivide::{RootShape, SubdivideOptions, SubdivideReport, Subdivision, octree_around, subdivide};
+pub use subdivide::{
+    RootShape, SubdivideOptions, SubdividePhases, SubdivideReport, Subdivision, octree_around, subdivide,
+};
 pub use tet2hex::tet_to_hex;
 pub use tetrahedralize::{
     SplitChoice, TetrahedralizeError, TetrahedralizeOptions, TetrahedralizeReport, tetrahedralize,

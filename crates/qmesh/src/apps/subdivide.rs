@@ -81,7 +81,30 @@ pub struct SubdivideReport {
     /// face or an edge; the authors' "generic" cells). Counted on the map, so `None`
     /// with `direct`.
     pub with_hanging_vertices: Option<usize>,
+    /// Where the query-replace subdivision spent its time (all zero with `direct`).
+    pub phases: SubdividePhases,
     pub seconds: f64,
+}
+
+/// Seconds per phase of the query-replace subdivision, summed over the levels.
+#[derive(Clone, Copy, Debug, Default, serde::Serialize)]
+pub struct SubdividePhases {
+    /// Building the level-0 map.
+    pub start: f64,
+    /// Boxes of the new cells and their contact with the surface.
+    pub contact: f64,
+    /// Removing the cells outside the surface.
+    pub remove_outside: f64,
+    /// The 2:1 balance closure.
+    pub balance: f64,
+    /// Splitting the cells' edges, flagging their corners, listing their faces.
+    pub split_edges: f64,
+    /// Looking the faces' and volumes' patterns up (on all cores).
+    pub lookup: f64,
+    /// Applying the replacements and relabelling the children.
+    pub apply: f64,
+    /// The final leaves and the count of cells with hanging vertices.
+    pub finish: f64,
 }
 
 /// The subdivision: the hexahedra (VTK order, with a `level` array) and, unless
@@ -112,13 +135,15 @@ pub fn subdivide(
         let (tree, r) = subdivide_direct(start, surface, opts.levels, opts.remove_outside, progress);
         (tree, None, r)
     } else {
-        let (map, r, leaves) = subdivide_qr(start, surface, opts, patterns, progress)?;
+        let (map, mut r, leaves) = subdivide_qr(start, surface, opts, patterns, progress)?;
+        let t = Instant::now();
         let with_hanging = |c: &[Dart]| {
             let mut w = OrbitWalker::new();
             c.iter().filter(|&&d| w.collect(&map, d, Orbit::Volume).len() > 24).count()
         };
         let darts: Vec<Dart> = leaves.values().copied().collect();
         hanging = Some(darts.par_chunks(walker_chunk(darts.len())).map(with_hanging).sum());
+        r.phases.finish = t.elapsed().as_secs_f64();
         (Octree { root, leaves: leaves.into_keys().collect() }, Some(map), r)
     };
     if opts.direct && opts.remove_outside {
@@ -191,6 +216,7 @@ fn subdivide_qr(
     let mut generated = None;
     let set = given_or_generated(patterns, GeneratedKind::HexSubdivision, &mut generated);
     let root = start.root;
+    let t = Instant::now();
     let mut map = build_map(start.to_mesh(), &BuildOptions::default()).expect("a grid of boxes builds").0;
     // Each dart's label is the level of its volume (replacements copy labels to the
     // darts they create; children are relabelled after each refinement).
@@ -201,26 +227,35 @@ fn subdivide_qr(
     // may be outside and untouched, among the cells of their level (the older leaves
     // were refined, removed or found inside; balance refines inside cells only).
     let mut fresh: Vec<Dart> = map.cells(Orbit::Volume).collect();
+    r.phases.start = t.elapsed().as_secs_f64();
     for level in 1..=opts.levels + 1 {
+        let t = Instant::now();
         let mut cells = boxes_of(&map, &fresh);
         leaves.extend(cells.iter().map(|(d, b)| (cell_of(root, b), *d)));
+        r.phases.contact += t.elapsed().as_secs_f64();
         if opts.remove_outside {
+            let t = Instant::now();
             for (_, b) in remove_outside_volumes(&mut map, root, surface, &mut cells)? {
                 leaves.remove(&cell_of(root, &b));
                 r.removed_outside += 1;
             }
+            r.phases.remove_outside += t.elapsed().as_secs_f64();
         }
         if level > opts.levels {
             break; // the last level's cells only needed registering (and removing)
         }
         progress(level);
         let parent_level = i32::from(level) - 1;
+        let t = Instant::now();
         let touched: Vec<Dart> = cells
             .par_iter()
             .filter(|(d, b)| map.label_of(*d) == parent_level && surface.intersects_box(b))
             .map(|&(d, _)| d)
             .collect();
+        r.phases.contact += t.elapsed().as_secs_f64();
+        let t = Instant::now();
         let mut plan = balance_closure(&mut map, &touched, parent_level)?;
+        r.phases.balance += t.elapsed().as_secs_f64();
         r.balance_splits += plan.len() - touched.len();
         plan.sort_unstable();
         fresh.clear();
@@ -287,6 +322,7 @@ fn refine(
     use_signatures: bool,
     r: &mut SubdivideReport,
 ) -> Result<(Vec<Dart>, Vec<Aabb>), MapError> {
+    let t = Instant::now();
     let mut w = OrbitWalker::new();
     let mut e = OrbitWalker::new();
     // Each cell's darts (old_darts[ends[i - 1]..ends[i]]) and box.
@@ -335,10 +371,13 @@ fn refine(
         }
     }
     map.free_mark(seen);
+    r.phases.split_edges += t.elapsed().as_secs_f64();
+    let t = Instant::now();
     let rep = replace_cells(map, set, Flags::Mark(flag), &faces, cells, use_signatures);
     map.free_mark(flag);
     r.faces_replaced += rep.faces_replaced;
     r.volumes_replaced += rep.volumes_replaced;
+    r.phases.lookup += rep.query_seconds;
     // Every child keeps some of its parent's boundary darts: relabel through them.
     for d in old_darts {
         if map.label_of(d) != child_level {
@@ -347,6 +386,7 @@ fn refine(
             }
         }
     }
+    r.phases.apply += t.elapsed().as_secs_f64() - rep.query_seconds;
     Ok((rep.created_volumes.into_iter().map(|(d, _)| d).collect(), boxes))
 }
 
