@@ -14,21 +14,11 @@ import argparse
 import json
 import os
 import re
-import subprocess
 import sys
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-DATA = os.environ.get("QMESH_DATA", os.path.join(os.path.dirname(ROOT), "shared", "data"))
-Q = os.path.join(ROOT, "target", "release", "qmesh")
+from common import DATA, MEASURE, Q, ROOT, sh
 PEER = os.path.join(os.path.dirname(DATA), "peers", "cgal_hexa_subdivision")
 SURFACES = ["bunny.off", "armadillo.obj", "cgal_mesh3.off"]
-
-
-def sh(*cmd):
-    r = subprocess.run(cmd, capture_output=True, text=True)
-    if r.returncode != 0:
-        sys.exit(f"failed: {' '.join(cmd)}\n{r.stderr}")
-    return r.stdout
 
 
 def peer_figures(text):
@@ -75,7 +65,7 @@ def main():
         for level in [int(x) for x in a.levels.split(",")]:
             out = os.path.join(a.out, f"{stem}_L{level}_box.vtk")
             res = sh(
-                sys.executable, os.path.join(ROOT, "bench", "measure.py"), str(a.runs),
+                sys.executable, MEASURE, str(a.runs),
                 "qmesh", "--", Q, "subdivide", off, "--root", "box", "--init", str(a.init),
                 "--levels", str(level), "--remove-outside", "-o", out, "--json", "--force", "---",
                 "peer", "--", PEER, "-patterns", patterns, "-lmax", str(level), "-init", str(a.init), off,

@@ -8,20 +8,10 @@ import argparse
 import glob
 import json
 import os
-import subprocess
 import sys
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-DATA = os.environ.get("QMESH_DATA", os.path.join(os.path.dirname(ROOT), "shared", "data"))
-Q = os.path.join(ROOT, "target", "release", "qmesh")
+from common import DATA, MEASURE, Q, sh
 HXT = os.path.join(os.path.dirname(DATA), "peers", "hxt_combine")
-
-
-def sh(*cmd):
-    r = subprocess.run(cmd, capture_output=True, text=True)
-    if r.returncode != 0:
-        sys.exit(f"failed: {' '.join(cmd)}\n{r.stderr}")
-    return r.stdout
 
 
 def main():
@@ -48,7 +38,7 @@ def main():
             t = json.loads(sh(Q, "tetrahedralize", src, "-o", tets, f"--{choice}", "--json", "--force"))["report"]
             out = os.path.join(a.out, f"{name}_{choice}_hex.mesh")
             res = sh(
-                sys.executable, os.path.join(ROOT, "bench", "measure.py"), str(a.runs),
+                sys.executable, MEASURE, str(a.runs),
                 "qmesh", "--", Q, "recombine", tets, "-o", out, "--json", "--force", "---",
                 "hxt", "--", HXT, tets, "--quiet", "--threads", "2",
             )

@@ -16,17 +16,16 @@ import argparse
 import glob
 import json
 import os
-import subprocess
 import sys
 import time
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+from common import DATA, MEASURE, Q, sh
+
 OUT = None  # the --out folder (gmsh's working folder)
 # gmsh's hex-dominant meshing of the AS1 assembly ran for over 20 minutes here: a
 # model gmsh cannot mesh in this time is skipped, with a message.
 GMSH_TIMEOUT = 300
-DATA = os.environ.get("QMESH_DATA", os.path.join(os.path.dirname(ROOT), "shared", "data"))
-Q = os.path.join(ROOT, "target", "release", "qmesh")
 HXT = os.path.join(os.path.dirname(DATA), "peers", "hxt_combine")
 
 # gmsh element types: 4 tetrahedron, 5 hexahedron, 6 prism, 7 pyramid, 140 trihedron.
@@ -53,16 +52,6 @@ print(json.dumps({"cells": cells, "seconds": seconds}))
 """
 
 
-def sh(*cmd, cwd=None, timeout=None):
-    try:
-        r = subprocess.run(cmd, capture_output=True, text=True, cwd=cwd, timeout=timeout)
-    except subprocess.TimeoutExpired:
-        sys.exit(f"failed: {' '.join(cmd[:2])} …\ntimed out after {timeout} s")
-    if r.returncode != 0:
-        sys.exit(f"failed: {' '.join(cmd)}\n{r.stderr[-2000:]}")
-    return r.stdout
-
-
 def gmsh_mesh(model, factor, recombine, out):
     # gmsh's Recombine3DAll writes debug files (new_points.pos) into its working
     # folder: run it in the output folder.
@@ -73,7 +62,7 @@ def gmsh_mesh(model, factor, recombine, out):
 
 def side_by_side(tets, out, runs):
     res = sh(
-        sys.executable, os.path.join(ROOT, "bench", "measure.py"), str(runs),
+        sys.executable, MEASURE, str(runs),
         "qmesh", "--", Q, "recombine", tets, "-o", out, "--json", "--force", "---",
         "hxt", "--", HXT, tets, "--quiet", "--threads", "2",
     )

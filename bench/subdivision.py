@@ -14,20 +14,10 @@ usage: bench/subdivision.py [--runs N] [--levels 6,7,8] [--out DIR] [SURFACE...]
 import argparse
 import json
 import os
-import subprocess
 import sys
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-DATA = os.environ.get("QMESH_DATA", os.path.join(os.path.dirname(ROOT), "shared", "data"))
-Q = os.path.join(ROOT, "target", "release", "qmesh")
+from common import DATA, MEASURE, Q, ROOT, sh
 SURFACES = ["armadillo.obj", "bunny.off", "fertility.off", "cgal_mesh3.off"]
-
-
-def sh(*cmd):
-    r = subprocess.run(cmd, capture_output=True, text=True)
-    if r.returncode != 0:
-        sys.exit(f"failed: {' '.join(cmd)}\n{r.stderr}")
-    return r.stdout
 
 
 def main():
@@ -50,7 +40,7 @@ def main():
             qr, direct = (os.path.join(a.out, f"{stem}_L{level}_{k}.vtk") for k in ("qr", "direct"))
             sh(*base, "--direct", "-o", direct)  # the file `info` reads
             res = sh(
-                sys.executable, os.path.join(ROOT, "bench", "measure.py"), str(a.runs),
+                sys.executable, MEASURE, str(a.runs),
                 "qr", "--", *base, "-o", qr, "---",
                 "qr1", "--", "env", "RAYON_NUM_THREADS=1", *base, "-o", qr + "1.vtk", "---",
                 "direct", "--", *base, "--direct", "-o", direct + "2.vtk", "---",
