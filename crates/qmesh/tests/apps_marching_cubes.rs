@@ -235,3 +235,133 @@ fn authors_set_differs_from_qmeshs_only_on_ambiguous_faces() {
     }
     assert_eq!((same, differ, ambiguous_same), (174, 80, 40));
 }
+
+/// A surface's polygons as point cycles, each rotated to start at its smallest point,
+/// sorted: equal for two surfaces with the same polygons, whatever their numbering.
+fn polygon_cycles(s: &IndexedMesh) -> Vec<Vec<[u64; 3]>> {
+    let mut out: Vec<Vec<[u64; 3]>> = (0..s.nb_polygons())
+        .map(|i| {
+            let mut c: Vec<[u64; 3]> = s.polygon(i).iter().map(|&v| s.points[v as usize].map(f64::to_bits)).collect();
+            let first = (0..c.len()).min_by_key(|&k| c[k]).unwrap_or(0);
+            c.rotate_left(first);
+            c
+        })
+        .collect();
+    out.sort();
+    out
+}
+
+/// A smooth random field: a few sines with random phases and frequencies (seeded).
+fn wavy_field(n: usize, seed: u64) -> Vec<f32> {
+    let mut state = seed;
+    let mut unit = || {
+        // (SplitMix64)
+        state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = state;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let waves: Vec<[f64; 4]> = (0..6).map(|_| [0; 4].map(|_| unit() * 0.9 + 0.1)).collect();
+    field(n, |x, y, z| waves.iter().map(|w| (w[0] * x + w[1] * y + w[2] * z + 6.0 * w[3]).sin()).sum::<f64>())
+}
+
+/// Slab by slab, the surface is the whole map's (issue 16 item 2): same polygons on the
+/// same points, same counts, for slabs of one layer and of a few, with qmesh's set and
+/// with the authors' (whose ambiguous faces are cut by the face's orientation: the layer
+/// each slab's map holds on either side makes the shared faces match as in the whole map).
+#[test]
+fn slabs_give_the_whole_maps_surface() {
+    use qmesh::apps::{FieldOptions, marching_cubes_field_with};
+    let authors = common::data_dir().map(|d| authors_set(&d));
+    let ours = mc_pattern_set();
+    let mut sets = vec![(&ours, McFlags::Inside)];
+    sets.extend(authors.as_ref().map(|s| (s, McFlags::Corners)));
+    for (set, flags) in sets {
+        for (seed, n) in [(1, 14), (2, 17), (3, 20)] {
+            let values = wavy_field(n, seed);
+            let run = |slab_cells| {
+                marching_cubes_field_with(&values, [n, n, n], 0.0, set, flags, &FieldOptions { slab_cells }).unwrap()
+            };
+            let (whole, w) = run(usize::MAX);
+            assert!(w.cells_built > 0 && w.unmatched_faces + w.unmatched_volumes == 0, "{w:?}");
+            for slab_cells in [1, 150] {
+                let (s, r) = run(slab_cells);
+                let counts = |r: &qmesh::apps::McReport| {
+                    (r.cells_built, r.edges_split, r.faces_replaced, r.volumes_replaced, r.polygons)
+                };
+                assert_eq!(counts(&r), counts(&w), "seed {seed}, {slab_cells} cells per slab");
+                assert_eq!(s.points.len(), whole.points.len(), "seed {seed}: one point per crossing");
+                assert_eq!(polygon_cycles(&s), polygon_cycles(&whole), "seed {seed}, {slab_cells} cells per slab");
+                assert_eq!(topology(&s), topology(&whole));
+            }
+        }
+    }
+}
+
+/// The result does not depend on the number of threads: the same points in the same
+/// order, the same polygons.
+#[test]
+fn marching_a_field_is_deterministic_across_threads() {
+    use qmesh::apps::{FieldOptions, marching_cubes_field_with};
+    let n = 22;
+    let values = wavy_field(n, 7);
+    let run = |threads| {
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+        pool.install(|| {
+            let opts = FieldOptions { slab_cells: 200 };
+            marching_cubes_field_with(&values, [n, n, n], 0.0, &mc_pattern_set(), McFlags::Inside, &opts).unwrap().0
+        })
+    };
+    let (one, four) = (run(1), run(4));
+    assert_eq!(one.points, four.points);
+    assert_eq!((one.poly_offsets, one.poly_conn), (four.poly_offsets, four.poly_conn));
+}
+
+/// `surface_topology` (the CLI's check) agrees with building the surface map, on the
+/// surfaces marching cubes makes and on the shared surfaces.
+#[test]
+fn surface_topology_agrees_with_the_map() {
+    use qmesh::build::surface_topology;
+    let mut surfaces: Vec<IndexedMesh> = (1..4)
+        .map(|seed| {
+            marching_cubes_field(&wavy_field(16, seed), [16; 3], 0.0, &mc_pattern_set(), McFlags::Inside).unwrap().0
+        })
+        .collect();
+    surfaces.extend(common::data_files("surface").iter().filter_map(|p| qmesh::io::read_surface(p, None).ok()));
+    for s in &surfaces {
+        let Some(t) = surface_topology(s) else {
+            assert!(build_surface_map(s).is_err(), "the map builds where surface_topology fails");
+            continue;
+        };
+        assert_eq!((t.open_edges, t.euler_characteristic), topology(s));
+        assert_eq!(surface_topology(&triangulate(s)), Some(t));
+    }
+}
+
+/// Volume lookups are remembered per thread by configuration (`replace::lookup_memo`):
+/// marching a field on a thread that has already seen every configuration, with this
+/// set and with another one, gives what a fresh thread gives.
+#[test]
+fn remembered_lookups_give_what_fresh_ones_give() {
+    let n = 18;
+    let values = wavy_field(n, 11);
+    let march = |set: &PatternSet| marching_cubes_field(&values, [n, n, n], 0.0, set, McFlags::Inside).unwrap().0;
+    let fresh = std::thread::spawn({
+        let values = values.clone();
+        move || marching_cubes_field(&values, [n, n, n], 0.0, &mc_pattern_set(), McFlags::Inside).unwrap().0
+    })
+    .join()
+    .unwrap();
+    let (mut ours, other) = (mc_pattern_set(), mc_pattern_set());
+    for config in 0..256 {
+        marching_cubes_field(&cube_field(config), [2, 2, 2], 0.0, &ours, McFlags::Inside).unwrap();
+    }
+    assert_eq!(polygon_cycles(&march(&other)), polygon_cycles(&fresh));
+    // A set that gains a pattern is another set for what was remembered: here the first
+    // v-pattern again (a duplicate, never used), which changes no match.
+    let again = mc_pattern_set().patterns.into_iter().find(|p| p.kind == PatternKind::Volume).unwrap();
+    ours.insert(again);
+    let warm = march(&ours);
+    assert_eq!((warm.points.clone(), polygon_cycles(&warm)), (fresh.points.clone(), polygon_cycles(&fresh)));
+}

@@ -5,8 +5,10 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use anyhow::{Context, Result, bail};
-use qmesh::apps::{McFlags, marching_cubes_field, marching_cubes_surface, mc_pattern_set, triangulate};
-use qmesh::build::build_surface_map;
+use qmesh::apps::{
+    FieldOptions, McFlags, marching_cubes_field_with, marching_cubes_surface, mc_pattern_set, triangulate,
+};
+use qmesh::build::surface_topology;
 use qmesh::geom::TriangleBvh;
 use qmesh::io::{WriteOptions, read_surface, resolve_format, write_indexed};
 use qmesh::pattern::{FlagRule, PatternKind, PatternSet};
@@ -34,6 +36,10 @@ pub struct Args {
     /// Isovalue: inside where value ≤ iso.
     #[arg(long, default_value_t = 0.0)]
     pub iso: f64,
+    /// Crossed cells marched at once per core (a field is marched slab by slab; the
+    /// surface does not depend on it, memory does).
+    #[arg(long, default_value_t = FieldOptions::default().slab_cells, value_parser = clap::value_parser!(usize))]
+    pub slab_cells: usize,
     #[command(flatten)]
     pub output: super::OutputArgs,
     /// Pattern folders (.moka with mark 0 on inside-corner darts, as `qmesh patterns
@@ -117,17 +123,18 @@ pub fn run(a: Args) -> Result<ExitCode> {
     let (set, flags) = mc_patterns(&a)?;
     let pb = crate::progress::spinner("marching cubes", a.report.quiet || a.report.json);
     let (polygons, r, hexes, source) = if let Some(field) = &a.field {
-        let bytes = std::fs::read(field).with_context(|| format!("reading {}", field.display()))?;
-        if bytes.len() % 4 != 0 {
-            bail!("{}: {} bytes is not a whole number of float32 values", field.display(), bytes.len());
-        }
-        let values: Vec<f32> = bytes.chunks_exact(4).map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]])).collect();
+        let values = read_f32(field)?;
         let &[nx, ny, nz] = a.dims.as_slice() else {
             bail!("--dims takes three sizes NX,NY,NZ, got {:?}", a.dims);
         };
         let dims = [nx, ny, nz];
-        let (s, r) = marching_cubes_field(&values, dims, a.iso, &set, flags)
+        if a.slab_cells == 0 {
+            bail!("--slab-cells must be at least 1");
+        }
+        let opts = FieldOptions { slab_cells: a.slab_cells };
+        let (s, r) = marching_cubes_field_with(&values, dims, a.iso, &set, flags, &opts)
             .map_err(|e| anyhow::anyhow!("{}: {e}", field.display()))?;
+        drop(values);
         let hexes = (dims[0] - 1) * (dims[1] - 1) * (dims[2] - 1);
         (s, r, hexes, field.clone())
     } else {
@@ -145,11 +152,12 @@ pub fn run(a: Args) -> Result<ExitCode> {
         (s, r, hexes, path)
     };
     pb.finish_and_clear();
-    let out = if a.triangulate { triangulate(&polygons) } else { polygons.clone() };
-    let (open_edges, chi) = match build_surface_map(&out) {
-        Ok((m, _)) => (Some(m.boundary_edges()), Some(m.count_cells().euler_characteristic(2))),
-        Err(_) => (None, None),
-    };
+    // (a fan of a polygon of n sides has n − 2 triangles)
+    let nb_polygons = polygons.nb_polygons();
+    let triangles: usize = (0..nb_polygons).map(|i| polygons.polygon(i).len().saturating_sub(2)).sum();
+    let out = if a.triangulate { triangulate(&polygons) } else { polygons };
+    let topology = surface_topology(&out);
+    let (open_edges, chi) = (topology.map(|t| t.open_edges), topology.map(|t| t.euler_characteristic));
     if out.nb_polygons() > 0 {
         write_indexed(&a.output.output, &out, out_format, &WriteOptions::default())?;
     }
@@ -167,8 +175,8 @@ pub fn run(a: Args) -> Result<ExitCode> {
             "volumes_replaced": r.volumes_replaced,
             "unmatched_faces": r.unmatched_faces,
             "unmatched_volumes": r.unmatched_volumes,
-            "polygons": polygons.nb_polygons(),
-            "triangles": triangulate(&polygons).nb_polygons(),
+            "polygons": nb_polygons,
+            "triangles": triangles,
             "open_edges": open_edges,
             "manifold": open_edges.is_some(),
             "euler_characteristic": chi,
@@ -190,8 +198,8 @@ pub fn run(a: Args) -> Result<ExitCode> {
         );
         println!(
             "surface: {} polygons ({} triangles), open edges {}, Euler characteristic {}; {:.3} s",
-            polygons.nb_polygons(),
-            triangulate(&polygons).nb_polygons(),
+            nb_polygons,
+            triangles,
             open_edges.map_or("n/a (non-manifold)".into(), |e| e.to_string()),
             chi.map_or("n/a".into(), |c| c.to_string()),
             r.seconds
@@ -207,4 +215,26 @@ pub fn run(a: Args) -> Result<ExitCode> {
     } else {
         ExitCode::from(1)
     })
+}
+
+/// A raw little-endian float32 file, read straight into its values.
+fn read_f32(path: &std::path::Path) -> Result<Vec<f32>> {
+    use std::io::Read;
+    let mut file = std::fs::File::open(path).with_context(|| format!("reading {}", path.display()))?;
+    let len = file.metadata().with_context(|| format!("reading {}", path.display()))?.len() as usize;
+    if !len.is_multiple_of(4) {
+        bail!("{}: {len} bytes is not a whole number of float32 values", path.display());
+    }
+    let mut values = vec![0f32; len / 4];
+    let mut chunk = vec![0u8; 1 << 16];
+    let mut at = 0;
+    while at < values.len() {
+        let n = ((values.len() - at) * 4).min(chunk.len());
+        file.read_exact(&mut chunk[..n]).with_context(|| format!("reading {}", path.display()))?;
+        for (v, b) in values[at..].iter_mut().zip(chunk[..n].chunks_exact(4)) {
+            *v = f32::from_le_bytes([b[0], b[1], b[2], b[3]]);
+        }
+        at += n / 4;
+    }
+    Ok(values)
 }

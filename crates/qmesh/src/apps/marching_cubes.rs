@@ -40,9 +40,10 @@ pub enum McFlags {
 }
 
 /// Extracts the surface between the vertices with `inside[v]` and the others (vertex
-/// ids of `map`) with the patterns of `set` (usually [`super::mc_pattern_set`]); `crossing(a, b)` places the new vertex on an edge from inside vertex
-/// `a` to outside vertex `b`. The map keeps the replaced cells; the surface's polygons
-/// are returned oriented with normals pointing outside.
+/// ids of `map`) with the patterns of `set` (usually [`super::mc_pattern_set`]);
+/// `crossing(a, b)` places the new vertex on an edge from inside vertex `a` to outside
+/// vertex `b`. The map keeps the replaced cells; the surface's polygons are returned
+/// oriented with normals pointing outside.
 ///
 /// # Errors
 /// Only if the map has no free mark.
@@ -53,6 +54,50 @@ pub fn marching_cubes(
     set: &PatternSet,
     flags: McFlags,
 ) -> Result<(IndexedMesh, McReport), MapError> {
+    march(map, inside, crossing, set, flags, None).map(|m| (m.surface, m.report))
+}
+
+/// What one march gives: the surface, the two original vertices (inside end first) of
+/// the edge each of its points was placed on (None for a point a v-pattern placed inside
+/// a cube), and the report.
+pub(super) struct March {
+    pub surface: IndexedMesh,
+    pub edge_ends: Vec<Option<[u32; 2]>>,
+    pub report: McReport,
+}
+
+/// The part of a map that one march replaces and counts, by layer: a slab of a grid
+/// whose map also holds one layer of cells on each side (see `super::mc_field`).
+pub(super) struct Layers<'a> {
+    /// The layer (grid coordinate along the slab axis) of an original vertex.
+    pub of_vertex: &'a dyn Fn(u32) -> usize,
+    /// Cells whose lowest vertex is in `lo..hi` are this slab's.
+    pub lo: usize,
+    pub hi: usize,
+    /// Whether `hi` is the grid's last plane (its cells are then this slab's too).
+    pub top: bool,
+}
+
+impl Layers<'_> {
+    /// Whether a cell (edge, face or volume) with these original vertices is this
+    /// slab's: each cell of the grid is one slab's.
+    fn owns(&self, vertices: impl Iterator<Item = u32>) -> bool {
+        let low = vertices.map(self.of_vertex).min().unwrap_or(usize::MAX);
+        (self.lo..self.hi).contains(&low) || (self.top && low == self.hi)
+    }
+}
+
+/// [`marching_cubes`] on the volumes `layers` owns (all when None); the faces those
+/// volumes share with the others are replaced too (their match must be the one the
+/// whole map would make), and only owned cells are counted.
+pub(super) fn march(
+    map: &mut CMap3,
+    inside: &[bool],
+    crossing: &dyn Fn(u32, u32) -> [f64; 3],
+    set: &PatternSet,
+    flags: McFlags,
+    layers: Option<&Layers>,
+) -> Result<March, MapError> {
     let t = Instant::now();
     let mut r = McReport {
         f_patterns: set.count(PatternKind::Face),
@@ -61,93 +106,121 @@ pub fn marching_cubes(
     };
     let original = map.nb_vertex_ids();
     let is_in = |v: u32| inside.get(v as usize).copied().unwrap_or(false);
+    let owns = |vertices: &mut dyn Iterator<Item = u32>| layers.is_none_or(|l| l.owns(vertices));
     let flag = map.reserve_mark()?;
-    for d in map.darts().collect::<Vec<_>>() {
+    let darts: Vec<Dart> = map.darts().collect();
+    for &d in &darts {
         if flags == McFlags::Corners || is_in(map.vertex_of(d)) {
             map.mark(d, flag);
         }
     }
-    // Crossing edges: one inside and one outside end.
-    let edges: Vec<Dart> =
-        map.cells(Orbit::Edge).filter(|&d| is_in(map.vertex_of(d)) != is_in(map.vertex_of(map.next(d)))).collect();
-    for &d in &edges {
-        let (a, b) = (map.vertex_of(d), map.vertex_of(map.next(d)));
-        let p = if is_in(a) { crossing(a, b) } else { crossing(b, a) };
-        map.insert_vertex_in_edge(d, p);
-    }
-    r.edges_split = edges.len();
-    let is_new = |v: u32| v as usize >= original;
+    // Crossing edges (one inside and one outside end, inside end first), in the order
+    // of their first darts; only the crossing darts' orbits are walked.
     let mut w = OrbitWalker::new();
-    let faces: Vec<Dart> = map
-        .cells(Orbit::Face)
-        .filter(|&d| w.collect(map, d, Orbit::HalfFace).iter().any(|&x| is_new(map.vertex_of(x))))
-        .collect();
-    let volumes: Vec<Dart> = map
-        .cells(Orbit::Volume)
-        .filter(|&d| w.collect(map, d, Orbit::Volume).iter().any(|&x| is_new(map.vertex_of(x))))
-        .collect();
+    let mut seen = crate::cmap::BitSet::with_len(map.dart_capacity());
+    let (mut split, mut edges) = (Vec::new(), Vec::new());
+    for &d in &darts {
+        let [a, b] = [map.vertex_of(d), map.vertex_of(map.next(d))];
+        if is_in(a) != is_in(b) && !seen.get(d.idx()) {
+            for &x in w.collect(map, d, Orbit::Edge) {
+                seen.insert(x.idx());
+            }
+            split.push(d);
+            edges.push(if is_in(a) { [a, b] } else { [b, a] });
+        }
+    }
+    drop((darts, seen));
+    // (splitting the edges and replacing the faces and cubes about doubles the darts)
+    map.reserve(map.nb_darts(), edges.len());
+    for (k, (&d, &[a, b])) in split.iter().zip(&edges).enumerate() {
+        // (new vertex ids follow the edges' order: a surface point's edge is found back)
+        let n = map.insert_vertex_in_edge(d, crossing(a, b));
+        debug_assert_eq!(map.vertex_of(n) as usize, original + k);
+    }
+    r.edges_split = edges.iter().filter(|e| owns(&mut e.iter().copied())).count();
+    let is_new = |v: u32| v as usize >= original;
+    // The volumes to replace, their darts marked so that the faces they hold are found.
+    let owned = map.reserve_mark()?;
+    let mut volumes = Vec::new();
+    for d in map.cells(Orbit::Volume).collect::<Vec<_>>() {
+        let darts = w.collect(map, d, Orbit::Volume);
+        let old = darts.iter().map(|&x| map.vertex_of(x)).filter(|&v| !is_new(v));
+        if darts.iter().any(|&x| is_new(map.vertex_of(x))) && owns(&mut old.into_iter()) {
+            for &x in darts {
+                map.mark(x, owned);
+            }
+            volumes.push(d);
+        }
+    }
+    let (mut faces, mut shared) = (Vec::new(), Vec::new());
+    for d in map.cells(Orbit::Face) {
+        let cycle = w.collect(map, d, Orbit::HalfFace);
+        let held = map.is_marked(d, owned) || map.beta(d, 3).is_some_and(|o| map.is_marked(o, owned));
+        if held && cycle.iter().any(|&x| is_new(map.vertex_of(x))) {
+            let mut old = cycle.iter().map(|&x| map.vertex_of(x)).filter(|&v| !is_new(v));
+            if owns(&mut old) { faces.push(d) } else { shared.push(d) }
+        }
+    }
+    map.free_mark(owned);
+    replace_cells(map, set, Flags::Mark(flag), &shared, &[], true);
     let rep = replace_cells(map, set, Flags::Mark(flag), &faces, &volumes, true);
     map.free_mark(flag);
     r.faces_replaced = rep.faces_replaced;
     r.volumes_replaced = rep.volumes_replaced;
+    // (a shared face that nothing matches is counted by the slab that owns it)
     r.unmatched_faces = rep.unmatched_faces;
     r.unmatched_volumes = rep.unmatched_volumes;
-    let surface = surface_polygons(map, original, inside);
+    let created: Vec<Dart> = rep.created_volumes.iter().map(|&(d, _)| d).collect();
+    let (surface, points) = surface_polygons(map, original, inside, &created);
     r.polygons = surface.nb_polygons();
     r.seconds = t.elapsed().as_secs_f64();
-    Ok((surface, r))
+    let edge_ends = points.iter().map(|&v| edges.get(v as usize - original).copied()).collect();
+    Ok(March { surface, edge_ends, report: r })
 }
 
-/// The faces whose vertices are all new, each taken once from its outside volume (a
-/// half-face's β1 order turns inward, toward its volume: the outside volume's copy
-/// points out of the object).
-fn surface_polygons(map: &CMap3, original: usize, inside: &[bool]) -> IndexedMesh {
+/// The faces of the `created` volumes (one dart each) whose vertices are all new, each
+/// taken from its outside volume (a half-face's β1 order turns inward, toward its
+/// volume: the outside volume's copy points out of the object); with the map vertex of
+/// each point.
+fn surface_polygons(map: &CMap3, original: usize, inside: &[bool], created: &[Dart]) -> (IndexedMesh, Vec<u32>) {
     let mut out = IndexedMesh::new();
+    let mut vertex_of_point = Vec::new();
     let mut id = vec![u32::MAX; map.nb_vertex_ids()];
     let mut w = OrbitWalker::new();
-    for d in map.cells(Orbit::HalfFace) {
-        let cycle: Vec<Dart> = w.collect(map, d, Orbit::HalfFace).to_vec();
-        if cycle.iter().any(|&x| (map.vertex_of(x) as usize) < original) {
+    let mut faces = OrbitWalker::new();
+    let is_outside = |v: usize| v < original && !inside.get(v).copied().unwrap_or(false);
+    let mut seen = crate::cmap::BitSet::with_len(map.dart_capacity());
+    let mut poly = Vec::new();
+    for &c in created {
+        let darts = w.collect(map, c, Orbit::Volume);
+        if !darts.iter().any(|&x| is_outside(map.vertex_of(x) as usize)) {
             continue;
         }
-        let is_outside = |v: usize| v < original && !inside.get(v).copied().unwrap_or(false);
-        // The face across an edge of a cut, in the same volume, is the part of a cube
-        // face on that side of the cut: its original corners tell the side (no walk of
-        // the whole volume); the volume is walked only when that face has none.
-        let across = map.beta(d, 2).and_then(|e| {
-            let mut x = e;
-            loop {
-                let v = map.vertex_of(x) as usize;
-                if v < original {
-                    return Some(v);
-                }
-                x = map.next(x);
-                if x == e {
-                    return None;
-                }
+        for &d in darts {
+            if seen.get(d.idx()) {
+                continue;
             }
-        });
-        let outside_volume = match across {
-            Some(v) => is_outside(v),
-            None => w.collect(map, d, Orbit::Volume).iter().any(|&x| is_outside(map.vertex_of(x) as usize)),
-        };
-        if !outside_volume {
-            continue;
-        }
-        let poly: Vec<u32> = cycle
-            .iter()
-            .map(|&x| {
+            let cycle = faces.collect(map, d, Orbit::HalfFace);
+            for x in cycle {
+                seen.insert(x.idx());
+            }
+            if cycle.iter().any(|&x| (map.vertex_of(x) as usize) < original) {
+                continue;
+            }
+            poly.clear();
+            for &x in cycle {
                 let v = map.vertex_of(x) as usize;
                 if id[v] == u32::MAX {
                     id[v] = out.points.len() as u32;
                     out.points.push(map.position(v as u32));
+                    vertex_of_point.push(v as u32);
                 }
-                id[v]
-            })
-            .collect();
-        out.push_polygon(&poly);
+                poly.push(id[v]);
+            }
+            out.push_polygon(&poly);
+        }
     }
-    out
+    (out, vertex_of_point)
 }
 
 /// Splits every polygon into a fan of triangles, from the first vertex whose
@@ -176,108 +249,6 @@ pub fn triangulate(mesh: &IndexedMesh) -> IndexedMesh {
         }
     }
     out
-}
-
-/// Marching cubes of a scalar field sampled on a grid of `dims` points (unit spacing,
-/// value of point (i, j, k) at `(i·ny + j)·nz + k`): inside where value ≤ `iso`, new
-/// vertices at the linear interpolation of the crossing (kept off the grid points).
-/// Only the cells the surface crosses are built (the others hold no part of it: their
-/// faces with the crossed cells have no crossing edge), so time and memory follow the
-/// surface, not the grid.
-///
-/// # Errors
-/// A value count that does not match `dims`, or dims below 2.
-pub fn marching_cubes_field(
-    values: &[f32],
-    dims: [usize; 3],
-    iso: f64,
-    set: &PatternSet,
-    flags: McFlags,
-) -> Result<(IndexedMesh, McReport), String> {
-    let [nx, ny, nz] = dims;
-    if dims.iter().any(|&n| n < 2) {
-        return Err(format!("grid dimensions {nx}×{ny}×{nz}: at least 2 points per axis"));
-    }
-    if values.len() != nx * ny * nz {
-        return Err(format!("{} values for a {nx}×{ny}×{nz} grid ({} expected)", values.len(), nx * ny * nz));
-    }
-    let value = |g: usize| f64::from(values[g]);
-    let band = crossed_cells(values, dims, iso);
-    if band.nb_cells() == 0 {
-        let r = McReport {
-            f_patterns: set.count(PatternKind::Face),
-            v_patterns: set.count(PatternKind::Volume),
-            ..Default::default()
-        };
-        return Ok((IndexedMesh::new(), r));
-    }
-    let cells_built = band.nb_cells();
-    let (mut map, _) =
-        crate::build::build_map(band, &crate::build::BuildOptions::default()).map_err(|e| e.to_string())?;
-    // The grid point of every vertex, from its (integer) position: the builder gives a
-    // vertex where crossed cells meet only at a corner or an edge one id per side.
-    let grid_point: Vec<usize> = (0..map.nb_vertex_ids() as u32)
-        .map(|v| {
-            let [a, b, c] = map.position(v).map(|x| x as usize);
-            (a * ny + b) * nz + c
-        })
-        .collect();
-    let inside: Vec<bool> = grid_point.iter().map(|&g| value(g) - iso <= 0.0).collect();
-    let crossing = |a: u32, b: u32| {
-        let (ga, gb) = (grid_point[a as usize], grid_point[b as usize]);
-        let (va, vb) = (value(ga), value(gb));
-        let t = if vb != va { ((iso - va) / (vb - va)).clamp(1e-6, 1.0 - 1e-6) } else { 0.5 };
-        let (p, q) = (grid_position(ga, ny, nz), grid_position(gb, ny, nz));
-        [0, 1, 2].map(|k| p[k] + t * (q[k] - p[k]))
-    };
-    let (surface, mut r) = marching_cubes(&mut map, &inside, &crossing, set, flags).map_err(|e| e.to_string())?;
-    r.cells_built = cells_built;
-    Ok((surface, r))
-}
-
-/// The hexahedra of the grid cells with corners on both sides of `iso` (corner order
-/// and cell order as [`crate::generate::hex_grid`]), on their own points placed at
-/// their grid coordinates.
-fn crossed_cells(values: &[f32], [nx, ny, nz]: [usize; 3], iso: f64) -> IndexedMesh {
-    let g = |i: usize, j: usize, k: usize| (i * ny + j) * nz + k;
-    let inside = |i: usize, j: usize, k: usize| f64::from(values[g(i, j, k)]) - iso <= 0.0;
-    let mut mesh = IndexedMesh::new();
-    let mut point_of = vec![u32::MAX; values.len()];
-    for k in 0..nz - 1 {
-        for j in 0..ny - 1 {
-            for i in 0..nx - 1 {
-                let corners = [
-                    (i, j, k),
-                    (i + 1, j, k),
-                    (i + 1, j + 1, k),
-                    (i, j + 1, k),
-                    (i, j, k + 1),
-                    (i + 1, j, k + 1),
-                    (i + 1, j + 1, k + 1),
-                    (i, j + 1, k + 1),
-                ];
-                let first = inside(i, j, k);
-                if corners.iter().all(|&(a, b, c)| inside(a, b, c) == first) {
-                    continue;
-                }
-                let nodes = corners.map(|(a, b, c)| {
-                    let p = g(a, b, c);
-                    if point_of[p] == u32::MAX {
-                        point_of[p] = mesh.points.len() as u32;
-                        mesh.points.push([a as f64, b as f64, c as f64]);
-                    }
-                    point_of[p]
-                });
-                mesh.push_cell(crate::build::CellKind::Hex, &nodes, None);
-            }
-        }
-    }
-    mesh
-}
-
-/// The position of grid point `g` (index `(i·ny + j)·nz + k`).
-fn grid_position(g: usize, ny: usize, nz: usize) -> [f64; 3] {
-    [(g / (ny * nz)) as f64, (g / nz % ny) as f64, (g % nz) as f64]
 }
 
 /// Marching cubes of a surface (2022 §7.2 on the hexahedra of §7.1): the 2:1 octree of

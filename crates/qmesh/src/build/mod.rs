@@ -13,6 +13,7 @@ mod indexed;
 mod quality;
 mod recognise;
 mod surface;
+mod surface_topology;
 mod volume;
 
 pub use conformity::{non_conformal_faces, non_conformal_faces_of};
@@ -27,6 +28,7 @@ pub use quality::{
 };
 pub use recognise::{StandardNodes, standard_cell};
 pub use surface::build_surface_map;
+pub use surface_topology::{SurfaceTopology, surface_topology};
 pub use volume::{BuildOptions, BuildReport, build_volume_map, build_volume_map_owned};
 
 use crate::cmap::CMap3;

@@ -112,6 +112,20 @@ impl CMap3 {
         self.betas.len()
     }
 
+    /// Makes room for `darts` more darts and `vertices` more vertices (an operation
+    /// that knows how much it will add avoids growing the tables step by step).
+    pub fn reserve(&mut self, darts: usize, vertices: usize) {
+        self.betas.reserve(darts);
+        self.vertex.reserve(darts);
+        if !self.marks.is_empty() {
+            self.marks.reserve(darts);
+        }
+        if let Some(l) = &mut self.labels {
+            l.reserve(darts);
+        }
+        self.positions.reserve(vertices);
+    }
+
     /// Number of vertex ids (positions), including ids no dart uses any more.
     pub fn nb_vertex_ids(&self) -> usize {
         self.positions.len()

@@ -29,6 +29,20 @@ pub struct PatternSet {
     /// Per v-signature shape (darts, flagged darts), the first pattern of each distinct
     /// signature with that shape.
     volume_shapes: FxHashMap<(usize, usize), Vec<usize>>,
+    version: SetVersion,
+}
+
+/// Names one content of a set: new for every set and after every insert, so that what
+/// is remembered about a set's lookups (see `replace::lookup_memo`) is never used for
+/// another.
+#[derive(Debug)]
+struct SetVersion(u64);
+
+impl Default for SetVersion {
+    fn default() -> Self {
+        static NEXT: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(1);
+        SetVersion(NEXT.fetch_add(1, std::sync::atomic::Ordering::Relaxed))
+    }
 }
 
 impl PatternSet {
@@ -41,7 +55,14 @@ impl PatternSet {
         }
         self.index.entry(p.signature.clone()).or_default().push(i);
         self.patterns.push(p);
+        self.version = SetVersion::default();
         i
+    }
+
+    /// This content's version: equal for two calls only if no pattern was added between
+    /// them, and never equal for two sets.
+    pub fn version(&self) -> u64 {
+        self.version.0
     }
 
     /// The pattern whose boundary has this signature.

@@ -5,6 +5,7 @@
 use std::time::Instant;
 
 use super::face::align_face;
+use super::lookup_memo;
 use crate::cmap::{BitSet, CMap3, Dart, MapError, Orbit, OrbitWalker};
 use crate::modify::{FacePattern, VolumePattern};
 use crate::pattern::{FlagRule, PatternKind, PatternSet, flag_corners_on};
@@ -13,7 +14,7 @@ use rustc_hash::FxHashMap;
 
 use crate::geom::centroid;
 use crate::signature::{
-    Flags, Signature, Surface, face_signature, match_direct, start_with_signature, volume_shape, volume_signature_from,
+    Flags, Signature, Surface, face_signature, match_direct, start_with_signature, volume_signature_from,
 };
 
 /// Cells looked up in parallel before their replacements are applied (bounds the
@@ -266,21 +267,30 @@ pub fn find_face(
 /// pattern's canonical start.
 pub fn find_volume(map: &CMap3, set: &PatternSet, flags: Flags, d: Dart, by_signature: bool) -> Option<(usize, Dart)> {
     if by_signature {
-        // Only patterns of the volume's shape can match; when one signature has it, its
-        // start is found directly (the same start as by minimising, see
-        // `start_with_signature`).
-        let shape = volume_shape(map, Surface::Cell, flags, d)?;
-        return match set.volume_candidates(shape) {
-            [] => None,
-            &[i] => {
-                let Signature::Volume(w) = &set.patterns[i].signature else { return None };
-                start_with_signature(map, Surface::Cell, flags, d, w).map(|s| (i, s))
+        // One traversal from d names the configuration (see `lookup_memo`).
+        return lookup_memo::with_word(map, flags, d, |darts, word| {
+            if let Some(found) = lookup_memo::recall(set, word) {
+                return found.map(|(i, at)| (i as usize, darts[at as usize]));
             }
-            _ => {
-                let (sig, _, start) = volume_signature_from(map, Surface::Cell, flags, d)?;
-                set.lookup_index(&sig).map(|i| (i, start))
-            }
-        };
+            // Only patterns of the volume's shape can match; when one signature has it,
+            // its start is found directly (the same start as by minimising, see
+            // `start_with_signature`).
+            let n = darts.len();
+            let shape = (n, word[2 * n..].iter().filter(|&&b| b == 1).count());
+            let found = match set.volume_candidates(shape) {
+                [] => None,
+                &[i] => match &set.patterns[i].signature {
+                    Signature::Volume(s) => start_with_signature(map, Surface::Cell, flags, d, s).map(|s| (i, s)),
+                    Signature::Face(_) => None,
+                },
+                _ => volume_signature_from(map, Surface::Cell, flags, d)
+                    .and_then(|(sig, _, start)| set.lookup_index(&sig).map(|i| (i, start))),
+            };
+            let label = |s: Dart| darts.iter().position(|&x| x == s).expect("the start is a dart of the volume");
+            lookup_memo::remember(set, word, found.map(|(i, s)| (i as u32, label(s) as u32)));
+            found
+        })
+        .flatten();
     }
     set.patterns.iter().enumerate().filter(|(_, p)| p.kind == PatternKind::Volume).find_map(|(i, p)| {
         match_direct((&p.map, Surface::PatternBoundary, Flags::Mark(p.flags), p.start), (map, Surface::Cell, flags, d))

@@ -3,6 +3,7 @@
 
 mod engine;
 mod face;
+mod lookup_memo;
 mod volume;
 
 pub use engine::{

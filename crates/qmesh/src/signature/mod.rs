@@ -12,7 +12,7 @@ pub use face::{cycle_automorphisms, cycle_signature, face_signature, pattern_fac
 pub use surface::Surface;
 pub use volume::{
     VolumeWord, match_direct, signature_shape, start_with_signature, volume_shape, volume_signature,
-    volume_signature_from, word_from,
+    volume_signature_from, word_from, word_into,
 };
 
 use crate::cmap::{CMap3, Dart, Mark};

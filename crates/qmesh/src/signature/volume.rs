@@ -26,7 +26,9 @@ pub fn word_from(
     start: Dart,
     bound: Option<&[u32]>,
 ) -> Option<VolumeWord> {
-    with_labels(map, |labels| word_with(map, surface, flags, start, bound, labels))
+    let mut out = VolumeWord::default();
+    with_labels(map, |labels| word_with(map, surface, flags, start, bound, labels, &mut out))?;
+    Some(out)
 }
 
 thread_local! {
@@ -45,7 +47,14 @@ fn with_labels<R>(map: &CMap3, f: impl FnOnce(&mut Vec<u32>) -> R) -> R {
     })
 }
 
-/// [`word_from`] on a label table that is all zeros on entry and left so on exit.
+/// [`word_from`] into `out`'s buffers (cleared first): whether the surface is closed.
+/// For loops over many volumes, which keep one `out`.
+pub fn word_into(map: &CMap3, surface: Surface, flags: Flags, start: Dart, out: &mut VolumeWord) -> bool {
+    with_labels(map, |label| word_with(map, surface, flags, start, None, label, out).is_some())
+}
+
+/// [`word_from`] into `out` (cleared first), on a label table that is all zeros on
+/// entry and left so on exit.
 fn word_with(
     map: &CMap3,
     surface: Surface,
@@ -53,15 +62,18 @@ fn word_with(
     start: Dart,
     bound: Option<&[u32]>,
     label: &mut [u32],
-) -> Option<VolumeWord> {
-    let mut out = VolumeWord::default();
-    let result = label_traversal(map, surface, start, bound, label, &mut out);
+    out: &mut VolumeWord,
+) -> Option<()> {
+    out.word.clear();
+    out.bits.clear();
+    out.darts.clear();
+    let result = label_traversal(map, surface, start, bound, label, out);
     for d in &out.darts {
         label[d.idx()] = 0;
     }
     result?;
-    out.bits = out.darts.iter().map(|&d| flags.get(map, d) as u32).collect();
-    Some(out)
+    out.bits.extend(out.darts.iter().map(|&d| flags.get(map, d) as u32));
+    Some(())
 }
 
 /// The traversal proper: fills `out.darts` and `out.word`; None when the surface is
@@ -144,14 +156,18 @@ fn signature_with(
     any: Dart,
     label: &mut [u32],
 ) -> Option<(Signature, usize, Dart)> {
-    let all = word_with(map, surface, flags, any, None, label)?.darts;
+    let mut w = VolumeWord::default();
+    word_with(map, surface, flags, any, None, label, &mut w)?;
+    let all = std::mem::take(&mut w.darts);
     let flagged: Vec<Dart> = all.iter().copied().filter(|&d| flags.get(map, d)).collect();
     let starts = if flagged.is_empty() { all } else { flagged };
     let mut best: Option<(Vec<u32>, Dart)> = None;
     let mut count = 0;
     for &s in &starts {
         let bound = best.as_ref().map(|b| b.0.as_slice());
-        let Some(w) = word_with(map, surface, flags, s, bound, label) else { continue };
+        if word_with(map, surface, flags, s, bound, label, &mut w).is_none() {
+            continue;
+        }
         let full: Vec<u32> = w.word.iter().chain(&w.bits).copied().collect();
         match best.as_ref().map(|b| full.cmp(&b.0)) {
             None | Some(std::cmp::Ordering::Less) => {
@@ -169,7 +185,8 @@ fn signature_with(
 /// it is open): an invariant of its v-signature, read from it by [`signature_shape`].
 pub fn volume_shape(map: &CMap3, surface: Surface, flags: Flags, any: Dart) -> Option<(usize, usize)> {
     with_labels(map, |label| {
-        let all = word_with(map, surface, flags, any, None, label)?;
+        let mut all = VolumeWord::default();
+        word_with(map, surface, flags, any, None, label, &mut all)?;
         Some((all.darts.len(), all.bits.iter().filter(|&&b| b == 1).count()))
     })
 }
@@ -189,7 +206,8 @@ pub fn signature_shape(s: &[u32]) -> (usize, usize) {
 /// every start (24 full traversals of a subdivided hexahedron) by about one.
 pub fn start_with_signature(map: &CMap3, surface: Surface, flags: Flags, any: Dart, expected: &[u32]) -> Option<Dart> {
     with_labels(map, |label| {
-        let all = word_with(map, surface, flags, any, None, label)?;
+        let mut all = VolumeWord::default();
+        word_with(map, surface, flags, any, None, label, &mut all)?;
         let n = all.darts.len();
         if 3 * n != expected.len() || signature_shape(expected) != (n, all.bits.iter().filter(|&&b| b == 1).count()) {
             return None;
