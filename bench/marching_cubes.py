@@ -92,7 +92,7 @@ def main():
         dims = f"{n},{n},{n}"
         commands[(name, "qmesh")] = [Q, "marching-cubes", "--field", path, "--dims", dims, "-o",
                                      os.path.join(out, f"{name}.off"), "--triangulate", "--force", "--json"]
-        for tool in PEERS + ["load"]:
+        for tool in PEERS + ["load-vtk", "load-skimage"]:
             commands[(name, tool)] = [sys.executable, PEER, tool, path, str(n)]
     samples = {k: [] for k in commands}
     floors = []
@@ -101,19 +101,21 @@ def main():
         for key, cmd in commands.items():
             samples[key].append(run(cmd))
     qmesh_floor = min(floors)
-    print(f"qmesh process floor (`qmesh --version`): {qmesh_floor / 1e6:.1f} MB; {a.runs} runs, medians\n")
+    print(f"qmesh process floor (`qmesh --version`): {qmesh_floor / 1e6:.1f} MB; {a.runs} runs, medians; "
+          f"{os.cpu_count()} cores\n")
     print("| field | tool | triangles | extraction s | wall s | peak RSS MB | memory incl. field MB | ÷ field | time ÷ FlyingEdges |")
     print("|---|---|--:|--:|--:|--:|--:|--:|--:|")
     for name, path, n in todo:
         field_bytes = 4 * n ** 3
-        python_floor = max(s[1] for s in samples[(name, "load")]) - field_bytes
+        floor_of = {t: max(s[1] for s in samples[(name, f"load-{lib}")]) - field_bytes
+                    for t, lib in [("flying-edges", "vtk"), ("marching-cubes", "vtk"), ("skimage", "skimage")]}
         fe = statistics.median(s[2]["seconds"] for s in samples[(name, "flying-edges")])
         for tool in ["qmesh"] + PEERS:
             s = samples[(name, tool)]
             seconds = statistics.median(x[2]["seconds"] for x in s)
             wall = statistics.median(x[0] for x in s)
             peak = max(x[1] for x in s)
-            memory = peak - (qmesh_floor if tool == "qmesh" else python_floor)
+            memory = peak - (qmesh_floor if tool == "qmesh" else floor_of[tool])
             triangles = s[-1][2]["triangles"]
             print(f"| {name} ({field_bytes / 1e6:.1f} MB) | {tool} | {triangles:,} | {seconds:.3f} | {wall:.2f} | "
                   f"{peak / 1e6:.1f} | {memory / 1e6:.1f} | {memory / field_bytes:.2f} | {seconds / fe:.1f} |")

@@ -2,9 +2,9 @@
 """One marching-cubes run of a peer on a raw float32 field, for bench/marching_cubes.py:
 prints {"seconds": extraction time in the process, "triangles": n}.
 
-usage: bench/mc_peer.py (flying-edges | marching-cubes | skimage | load) FIELD N
-`load` reads the field and imports the libraries but extracts nothing: the baseline
-whose peak memory the others' is compared with. The field's index is (i·n + j)·n + k,
+usage: bench/mc_peer.py (flying-edges | marching-cubes | skimage | load-vtk | load-skimage) FIELD N
+`load-…` reads the field and imports the library but extracts nothing: the baseline
+whose peak memory the library's filters are compared with. The field's index is (i·n + j)·n + k,
 k fastest: VTK's x is our k, and scikit-image takes the array as (i, j, k)."""
 import json
 import sys
@@ -18,16 +18,16 @@ def main():
     values = np.fromfile(path, dtype=np.float32)
     if values.size != n ** 3:
         sys.exit(f"{path}: {values.size} values, {n ** 3} expected")
-    if tool in ("flying-edges", "marching-cubes", "load"):
+    if tool in ("flying-edges", "marching-cubes", "load-vtk"):
         import vtk
         from vtk.util import numpy_support
         image = vtk.vtkImageData()
         image.SetDimensions(n, n, n)
         image.GetPointData().SetScalars(numpy_support.numpy_to_vtk(values, deep=0))
-    if tool == "skimage" or tool == "load":
+    if tool in ("skimage", "load-skimage"):
         from skimage.measure import marching_cubes
         volume = values.reshape(n, n, n)
-    if tool == "load":
+    if tool.startswith("load"):
         print(json.dumps({"seconds": 0.0, "triangles": 0}))
         return
     t = time.perf_counter()

@@ -281,7 +281,15 @@ fn slabs_give_the_whole_maps_surface() {
         for (seed, n) in [(1, 14), (2, 17), (3, 20)] {
             let values = wavy_field(n, seed);
             let run = |slab_cells| {
-                marching_cubes_field_with(&values, [n, n, n], 0.0, set, flags, &FieldOptions { slab_cells }).unwrap()
+                marching_cubes_field_with(
+                    &values,
+                    [n, n, n],
+                    0.0,
+                    set,
+                    flags,
+                    &FieldOptions { compiled: false, slab_cells },
+                )
+                .unwrap()
             };
             let (whole, w) = run(usize::MAX);
             assert!(w.cells_built > 0 && w.unmatched_faces + w.unmatched_volumes == 0, "{w:?}");
@@ -309,7 +317,7 @@ fn marching_a_field_is_deterministic_across_threads() {
     let run = |threads| {
         let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
         pool.install(|| {
-            let opts = FieldOptions { slab_cells: 200 };
+            let opts = FieldOptions { compiled: false, slab_cells: 200 };
             marching_cubes_field_with(&values, [n, n, n], 0.0, &mc_pattern_set(), McFlags::Inside, &opts).unwrap().0
         })
     };
@@ -364,4 +372,45 @@ fn remembered_lookups_give_what_fresh_ones_give() {
     ours.insert(again);
     let warm = march(&ours);
     assert_eq!((warm.points.clone(), polygon_cycles(&warm)), (fresh.points.clone(), polygon_cycles(&fresh)));
+}
+
+/// Compiled cases (each case query-replaced once, its surface laid on every cell of the
+/// case) give the surface of the maps of every crossed cell: the same points in the same
+/// places, the same polygons, the same counts; with qmesh's set and the authors'.
+#[test]
+fn compiled_cases_give_the_maps_surface() {
+    use qmesh::apps::{FieldOptions, marching_cubes_field_with};
+    let dir = common::data_dir();
+    let authors = dir.as_ref().map(|d| authors_set(d));
+    let ours = mc_pattern_set();
+    let mut sets = vec![(&ours, McFlags::Inside)];
+    sets.extend(authors.as_ref().map(|s| (s, McFlags::Corners)));
+    let mut fields: Vec<(Vec<f32>, usize)> = [(21, 13), (22, 19), (23, 24)].map(|(s, n)| (wavy_field(n, s), n)).into();
+    if let Some(d) = &dir {
+        for (name, n) in [("fields/field_noise_32.f32", 32), ("fields/field_gyroid_64.f32", 64)] {
+            let bytes = std::fs::read(d.join(name)).expect(name);
+            fields.push((bytes.chunks_exact(4).map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]])).collect(), n));
+        }
+    }
+    for (set, flags) in sets {
+        for (values, n) in &fields {
+            let run = |compiled| {
+                let opts = FieldOptions { compiled, ..FieldOptions::default() };
+                marching_cubes_field_with(values, [*n; 3], 0.0, set, flags, &opts).unwrap()
+            };
+            let ((a, ra), (b, rb)) = (run(true), run(false));
+            let counts = |r: &qmesh::apps::McReport| {
+                (r.cells_built, r.edges_split, r.faces_replaced, r.volumes_replaced, r.polygons, r.unmatched_faces)
+            };
+            assert_eq!(counts(&ra), counts(&rb), "{n}³, {flags:?}");
+            let points = |s: &IndexedMesh| {
+                let mut p: Vec<[u64; 3]> = s.points.iter().map(|p| p.map(f64::to_bits)).collect();
+                p.sort();
+                p
+            };
+            assert_eq!(points(&a), points(&b), "{n}³, {flags:?}");
+            assert_eq!(polygon_cycles(&a), polygon_cycles(&b), "{n}³, {flags:?}");
+            eprintln!("{n}³ {flags:?}: compiled {:.4} s ({:?}), maps {:.4} s", ra.seconds, ra.phases, rb.seconds);
+        }
+    }
 }

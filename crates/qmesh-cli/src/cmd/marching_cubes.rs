@@ -6,7 +6,7 @@ use std::process::ExitCode;
 
 use anyhow::{Context, Result, bail};
 use qmesh::apps::{
-    FieldOptions, McFlags, marching_cubes_field_with, marching_cubes_surface, mc_pattern_set, triangulate,
+    FieldOptions, McFlags, marching_cubes_field_with, marching_cubes_surface, mc_pattern_set, triangulate_owned,
 };
 use qmesh::build::surface_topology;
 use qmesh::geom::TriangleBvh;
@@ -36,6 +36,12 @@ pub struct Args {
     /// Isovalue: inside where value ≤ iso.
     #[arg(long, default_value_t = 0.0)]
     pub iso: f64,
+    /// How a field is marched: `compiled` query-replaces each case of cell once and lays
+    /// its surface on every cell of the case; `maps` query-replaces every crossed cell
+    /// on the maps of slabs of the grid. Both give the same surface; sets that place
+    /// vertices inside cubes are always marched on maps.
+    #[arg(long, value_enum, default_value_t = FieldEngine::Compiled)]
+    pub engine: FieldEngine,
     /// Crossed cells marched at once per core (a field is marched slab by slab; the
     /// surface does not depend on it, memory does).
     #[arg(long, default_value_t = FieldOptions::default().slab_cells, value_parser = clap::value_parser!(usize))]
@@ -60,6 +66,12 @@ pub struct Args {
     pub format: Option<String>,
     #[command(flatten)]
     pub report: super::ReportArgs,
+}
+
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FieldEngine {
+    Compiled,
+    Maps,
 }
 
 #[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
@@ -131,7 +143,7 @@ pub fn run(a: Args) -> Result<ExitCode> {
         if a.slab_cells == 0 {
             bail!("--slab-cells must be at least 1");
         }
-        let opts = FieldOptions { slab_cells: a.slab_cells };
+        let opts = FieldOptions { compiled: a.engine == FieldEngine::Compiled, slab_cells: a.slab_cells };
         let (s, r) = marching_cubes_field_with(&values, dims, a.iso, &set, flags, &opts)
             .map_err(|e| anyhow::anyhow!("{}: {e}", field.display()))?;
         drop(values);
@@ -152,10 +164,11 @@ pub fn run(a: Args) -> Result<ExitCode> {
         (s, r, hexes, path)
     };
     pb.finish_and_clear();
+    release_freed_memory();
     // (a fan of a polygon of n sides has n − 2 triangles)
     let nb_polygons = polygons.nb_polygons();
     let triangles: usize = (0..nb_polygons).map(|i| polygons.polygon(i).len().saturating_sub(2)).sum();
-    let out = if a.triangulate { triangulate(&polygons) } else { polygons };
+    let out = if a.triangulate { triangulate_owned(polygons) } else { polygons };
     let topology = surface_topology(&out);
     let (open_edges, chi) = (topology.map(|t| t.open_edges), topology.map(|t| t.euler_characteristic));
     if out.nb_polygons() > 0 {
@@ -181,6 +194,7 @@ pub fn run(a: Args) -> Result<ExitCode> {
             "manifold": open_edges.is_some(),
             "euler_characteristic": chi,
             "seconds": r.seconds,
+            "phases": r.phases,
         });
         println!("{}", serde_json::to_string_pretty(&j)?);
     } else if !a.report.quiet {
@@ -237,4 +251,15 @@ fn read_f32(path: &std::path::Path) -> Result<Vec<f32>> {
         at += n / 4;
     }
     Ok(values)
+}
+
+/// Gives the memory freed by the marching (the field, every core's working memory) back
+/// to the system before the surface is triangulated, checked and written: glibc keeps
+/// freed blocks inside each thread's heap otherwise (gyroid 128³: peak RSS 38.1 → 34 MB).
+fn release_freed_memory() {
+    #[cfg(all(target_os = "linux", target_env = "gnu"))]
+    // SAFETY: malloc_trim only returns free pages of the allocator's heaps to the kernel.
+    unsafe {
+        libc::malloc_trim(0);
+    }
 }

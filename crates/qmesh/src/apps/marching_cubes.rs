@@ -24,6 +24,20 @@ pub struct McReport {
     /// Hexahedra of the map marched: for a field, only the cells the surface crosses.
     pub cells_built: usize,
     pub seconds: f64,
+    /// Where a field's time went (seconds).
+    pub phases: McPhases,
+}
+
+/// The phases of marching a field: the crossed cells found, then either the cases
+/// compiled, the crossing points placed and the cells' polygons laid, or the slabs'
+/// maps built and marched.
+#[derive(Clone, Debug, Default, serde::Serialize)]
+pub struct McPhases {
+    pub classify: f64,
+    pub compile: f64,
+    pub points: f64,
+    pub lay: f64,
+    pub slabs: f64,
 }
 
 /// Which input darts carry the flags that matching respects (2022 §7.2).
@@ -81,13 +95,17 @@ pub(super) struct Layers<'a> {
 impl Layers<'_> {
     /// Whether a cell (edge, face or volume) with these original vertices is this
     /// slab's: each cell of the grid is one slab's.
-    fn owns(&self, vertices: impl Iterator<Item = u32>) -> bool {
+    pub fn owns(&self, vertices: &mut dyn Iterator<Item = u32>) -> bool {
         let low = vertices.map(self.of_vertex).min().unwrap_or(usize::MAX);
         (self.lo..self.hi).contains(&low) || (self.top && low == self.hi)
     }
 }
 
-/// [`marching_cubes`] on the volumes `layers` owns (all when None); the faces those
+/// Whether a cell (edge, face or volume) with these original vertices is replaced and
+/// counted by a march (see [`Layers::owns`]).
+pub(super) type Owns<'a> = &'a dyn Fn(&mut dyn Iterator<Item = u32>) -> bool;
+
+/// [`marching_cubes`] on the volumes `region` owns (all when None); the faces those
 /// volumes share with the others are replaced too (their match must be the one the
 /// whole map would make), and only owned cells are counted.
 pub(super) fn march(
@@ -96,7 +114,7 @@ pub(super) fn march(
     crossing: &dyn Fn(u32, u32) -> [f64; 3],
     set: &PatternSet,
     flags: McFlags,
-    layers: Option<&Layers>,
+    region: Option<Owns>,
 ) -> Result<March, MapError> {
     let t = Instant::now();
     let mut r = McReport {
@@ -106,7 +124,7 @@ pub(super) fn march(
     };
     let original = map.nb_vertex_ids();
     let is_in = |v: u32| inside.get(v as usize).copied().unwrap_or(false);
-    let owns = |vertices: &mut dyn Iterator<Item = u32>| layers.is_none_or(|l| l.owns(vertices));
+    let owns = |vertices: &mut dyn Iterator<Item = u32>| region.is_none_or(|owns| owns(vertices));
     let flag = map.reserve_mark()?;
     let darts: Vec<Dart> = map.darts().collect();
     for &d in &darts {
@@ -227,28 +245,46 @@ fn surface_polygons(map: &CMap3, original: usize, inside: &[bool], created: &[Da
 /// diagonals are not already edges of the surface (two polygons sharing two vertices
 /// would otherwise get the same diagonal, a non-manifold edge).
 pub fn triangulate(mesh: &IndexedMesh) -> IndexedMesh {
-    let key = |a: u32, b: u32| (a.min(b), a.max(b));
-    let mut edges: rustc_hash::FxHashSet<(u32, u32)> = rustc_hash::FxHashSet::default();
-    for i in 0..mesh.nb_polygons() {
-        let p = mesh.polygon(i);
-        for k in 0..p.len() {
-            edges.insert(key(p[k], p[(k + 1) % p.len()]));
-        }
-    }
     let mut out = IndexedMesh { points: mesh.points.clone(), ..IndexedMesh::new() };
+    fan_into(mesh, &mut out);
+    out
+}
+
+/// [`triangulate`], taking the mesh (its points move to the result).
+pub fn triangulate_owned(mut mesh: IndexedMesh) -> IndexedMesh {
+    let mut out = IndexedMesh { points: std::mem::take(&mut mesh.points), ..IndexedMesh::new() };
+    fan_into(&mesh, &mut out);
+    out
+}
+
+/// Appends the fans of `mesh`'s polygons to `out`, whose points they index.
+fn fan_into(mesh: &IndexedMesh, out: &mut IndexedMesh) {
+    let conn = &mesh.poly_conn;
+    // The edges of the polygons by vertex; the diagonals drawn, in a set of their own.
+    let Some(half) = crate::build::HalfEdges::of_polygons(&mesh.poly_offsets, conn, out.points.len(), |_| true) else {
+        return;
+    };
+    let key = |a: u32, b: u32| (a.min(b), a.max(b));
+    let mut diagonals: rustc_hash::FxHashSet<(u32, u32)> = rustc_hash::FxHashSet::default();
+    diagonals.reserve((0..mesh.nb_polygons()).map(|i| mesh.polygon(i).len().saturating_sub(3)).sum());
+    let is_edge = |d: &rustc_hash::FxHashSet<(u32, u32)>, u: u32, v: u32| {
+        half.find(conn, u, v).is_some() || half.find(conn, v, u).is_some() || d.contains(&key(u, v))
+    };
+    let triangles: usize = (0..mesh.nb_polygons()).map(|i| mesh.polygon(i).len().saturating_sub(2)).sum();
+    out.poly_conn.reserve(3 * triangles);
+    out.poly_offsets.reserve(triangles);
     for i in 0..mesh.nb_polygons() {
         let p = mesh.polygon(i);
         let n = p.len();
-        let diagonals = |apex: usize| (2..n.saturating_sub(1)).map(move |j| (p[apex], p[(apex + j) % n]));
-        let apex = (0..n).find(|&a| diagonals(a).all(|(u, v)| !edges.contains(&key(u, v)))).unwrap_or(0);
-        for (u, v) in diagonals(apex) {
-            edges.insert(key(u, v));
+        let diagonal_ends = |apex: usize| (2..n.saturating_sub(1)).map(move |j| (p[apex], p[(apex + j) % n]));
+        let apex = (0..n).find(|&a| diagonal_ends(a).all(|(u, v)| !is_edge(&diagonals, u, v))).unwrap_or(0);
+        for (u, v) in diagonal_ends(apex) {
+            diagonals.insert(key(u, v));
         }
         for k in 1..n.saturating_sub(1) {
             out.push_polygon(&[p[apex], p[(apex + k) % n], p[(apex + k + 1) % n]]);
         }
     }
-    out
 }
 
 /// Marching cubes of a surface (2022 §7.2 on the hexahedra of §7.1): the 2:1 octree of

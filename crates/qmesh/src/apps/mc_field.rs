@@ -9,12 +9,18 @@ use rayon::prelude::*;
 use rustc_hash::FxHashMap;
 
 use super::marching_cubes::{Layers, McFlags, McReport, march};
+use super::mc_grid::Grid;
 use crate::build::{BuildOptions, CellKind, IndexedMesh, build_map};
 use crate::pattern::{PatternKind, PatternSet};
 
-/// How [`marching_cubes_field_with`] cuts the grid.
+/// How [`marching_cubes_field_with`] marches the grid.
 #[derive(Clone, Copy, Debug)]
 pub struct FieldOptions {
+    /// Each case of cell query-replaced once and its surface laid on every cell of the
+    /// case (the same surface; see `mc_compiled`), rather than every crossed cell
+    /// query-replaced on the maps of slabs. Sets that place vertices inside cubes or
+    /// leave a case unmatched are marched on maps whatever this says.
+    pub compiled: bool,
     /// Crossed cells per slab (a slab is at least one layer of cells). The surface does
     /// not depend on it: each slab's map also holds the crossed cells of the layer on
     /// each side, so every face it shares with them is matched as in the whole map.
@@ -23,7 +29,7 @@ pub struct FieldOptions {
 
 impl Default for FieldOptions {
     fn default() -> Self {
-        FieldOptions { slab_cells: 8192 }
+        FieldOptions { compiled: true, slab_cells: 8192 }
     }
 }
 
@@ -80,7 +86,15 @@ pub fn marching_cubes_field_with(
         return Err("a slab needs at least one cell".into());
     }
     let grid = Grid::new(values, dims, iso);
-    let layers: Vec<Vec<u32>> = (0..nz - 1).into_par_iter().map(|k| grid.crossed_in_layer(k)).collect();
+    let layers = grid.crossed_layers();
+    let classify = t.elapsed().as_secs_f64();
+    if opts.compiled
+        && let Some((surface, mut r)) = super::mc_compiled::march_compiled(&grid, &layers, set, flags)
+    {
+        r.seconds = t.elapsed().as_secs_f64();
+        r.phases.classify = classify;
+        return Ok((surface, r));
+    }
     let slabs = slab_ranges(&layers, opts.slab_cells);
     let marched: Vec<SlabSurface> =
         slabs.par_iter().map(|&(lo, hi)| march_slab(&grid, &layers, lo, hi, set, flags)).collect::<Result<_, _>>()?;
@@ -125,92 +139,14 @@ pub fn marching_cubes_field_with(
     }
     r.polygons = surface.nb_polygons();
     r.seconds = t.elapsed().as_secs_f64();
+    r.phases.classify = classify;
+    r.phases.slabs = r.seconds - classify;
     Ok((surface, r))
-}
-
-/// The field with its inside points as bits.
-struct Grid<'a> {
-    values: &'a [f32],
-    dims: [usize; 3],
-    iso: f64,
-    inside: Vec<u64>,
-}
-
-impl<'a> Grid<'a> {
-    fn new(values: &'a [f32], dims: [usize; 3], iso: f64) -> Self {
-        let inside = values
-            .par_chunks(64)
-            .map(|c| c.iter().enumerate().fold(0u64, |w, (b, &x)| w | (u64::from(f64::from(x) - iso <= 0.0) << b)))
-            .collect();
-        Grid { values, dims, iso, inside }
-    }
-
-    fn index(&self, [i, j, k]: [usize; 3]) -> usize {
-        (i * self.dims[1] + j) * self.dims[2] + k
-    }
-
-    fn is_inside(&self, g: usize) -> bool {
-        self.inside[g / 64] >> (g % 64) & 1 == 1
-    }
-
-    /// The corners of cell (i, j, k) in hexahedron order (as [`crate::generate::hex_grid`]).
-    fn corners(&self, [i, j, k]: [usize; 3]) -> [usize; 8] {
-        [[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0], [0, 0, 1], [1, 0, 1], [1, 1, 1], [0, 1, 1]]
-            .map(|[a, b, c]| self.index([i + a, j + b, k + c]))
-    }
-
-    /// The cells of layer `k` with corners on both sides, as `j·(nx − 1) + i`, in the
-    /// order (j, then i) of the whole grid's cells.
-    fn crossed_in_layer(&self, k: usize) -> Vec<u32> {
-        let [nx, ny, _] = self.dims;
-        let mut out = Vec::new();
-        for j in 0..ny - 1 {
-            for i in 0..nx - 1 {
-                let c = self.corners([i, j, k]);
-                let first = self.is_inside(c[0]);
-                if c[1..].iter().any(|&g| self.is_inside(g) != first) {
-                    out.push((j * (nx - 1) + i) as u32);
-                }
-            }
-        }
-        out
-    }
-
-    /// The grid point of `g`'s coordinates.
-    fn coordinates(&self, g: usize) -> [usize; 3] {
-        let [_, ny, nz] = self.dims;
-        [g / (ny * nz), g / nz % ny, g % nz]
-    }
-
-    /// The key of the grid edge between neighbouring points `a` and `b`: 3 × the lower
-    /// point + the axis.
-    fn edge_key(&self, a: usize, b: usize) -> u64 {
-        let (lo, hi) = (a.min(b), a.max(b));
-        let axis = match hi - lo {
-            1 => 2,
-            d if d == self.dims[2] => 1,
-            _ => 0,
-        };
-        3 * lo as u64 + axis
-    }
-
-    /// The plane k = const holding edge `key`, if it lies in one (not along k).
-    fn plane_of(&self, key: u64) -> Option<usize> {
-        (key % 3 != 2).then(|| self.coordinates((key / 3) as usize)[2])
-    }
-
-    /// Where the surface crosses the edge from inside point `a` to outside point `b`.
-    fn crossing(&self, a: usize, b: usize) -> [f64; 3] {
-        let (va, vb) = (f64::from(self.values[a]), f64::from(self.values[b]));
-        let t = if vb != va { ((self.iso - va) / (vb - va)).clamp(1e-6, 1.0 - 1e-6) } else { 0.5 };
-        let (p, q) = (self.coordinates(a), self.coordinates(b));
-        [0, 1, 2].map(|k| p[k] as f64 + t * (q[k] as f64 - p[k] as f64))
-    }
 }
 
 /// Consecutive layers `lo..hi`, each run holding at most `cells` crossed cells (or one
 /// layer): a function of the field only, so the result does not depend on the cores.
-fn slab_ranges(layers: &[Vec<u32>], cells: usize) -> Vec<(usize, usize)> {
+fn slab_ranges(layers: &[Vec<(u32, u8)>], cells: usize) -> Vec<(usize, usize)> {
     let mut out = Vec::new();
     let (mut lo, mut held) = (0, 0);
     for (k, layer) in layers.iter().enumerate() {
@@ -238,7 +174,7 @@ struct SlabSurface {
 /// marches the slab's own.
 fn march_slab(
     grid: &Grid,
-    layers: &[Vec<u32>],
+    layers: &[Vec<(u32, u8)>],
     lo: usize,
     hi: usize,
     set: &PatternSet,
@@ -254,7 +190,7 @@ fn march_slab(
     };
     let mut point_of = vec![u32::MAX; (last + 2 - first) * nx * ny];
     for (k, layer) in layers.iter().enumerate().take(last + 1).skip(first) {
-        for &c in layer {
+        for &(c, _) in layer {
             let (i, j) = (c as usize % (nx - 1), c as usize / (nx - 1));
             let nodes = grid.corners([i, j, k]).map(|g| {
                 let slot = &mut point_of[window(g)];
@@ -281,7 +217,8 @@ fn march_slab(
     let crossing = |a: u32, b: u32| grid.crossing(grid_point[a as usize], grid_point[b as usize]);
     let of_vertex = |v: u32| grid.coordinates(grid_point[v as usize])[2];
     let layers = Layers { of_vertex: &of_vertex, lo, hi, top: hi == nz - 1 };
-    let m = march(&mut map, &inside, &crossing, set, flags, Some(&layers)).map_err(|e| e.to_string())?;
+    let owns = |v: &mut dyn Iterator<Item = u32>| layers.owns(v);
+    let m = march(&mut map, &inside, &crossing, set, flags, Some(&owns)).map_err(|e| e.to_string())?;
     let edges = m
         .edge_ends
         .iter()

@@ -8,7 +8,9 @@ mod generated_patterns;
 mod hanging;
 mod hex_split;
 mod marching_cubes;
+mod mc_compiled;
 mod mc_field;
+mod mc_grid;
 mod mc_patterns;
 mod octree;
 mod recombine;
@@ -25,7 +27,9 @@ pub use hex_split::{
     HEX_FACES, HexRule, HexRuleError, HexSplit, HexSplits, HexTarget, OrientedClass, SplitClass, hex_rules,
     split_query_mesh, split_target_mesh,
 };
-pub use marching_cubes::{McFlags, McReport, marching_cubes, marching_cubes_surface, triangulate};
+pub use marching_cubes::{
+    McFlags, McPhases, McReport, marching_cubes, marching_cubes_surface, triangulate, triangulate_owned,
+};
 pub use mc_field::{FieldOptions, marching_cubes_field, marching_cubes_field_with};
 pub use mc_patterns::{mc_face_patterns, mc_pattern_set, mc_volume_patterns};
 pub use octree::{OctCell, Octree, RootBox};

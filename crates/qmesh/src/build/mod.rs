@@ -9,6 +9,7 @@ mod boundary;
 mod conformity;
 mod error;
 mod extract;
+mod half_edges;
 mod indexed;
 mod quality;
 mod recognise;
@@ -22,6 +23,7 @@ pub use extract::{
     ExtractedKinds, boundary_polygons, classify_volume, count_cell_kinds, count_kinds_of, extract, extract_all_points,
     extract_with, polyhedron_stream, recognise_volume, volume_values,
 };
+pub use half_edges::HalfEdges;
 pub use indexed::{CellArray, CellKind, CellValues, HEX_CORNER_BITS, IndexedMesh};
 pub use quality::{
     QualityByKind, QualitySummary, cell_scaled_jacobian, quality_by_kind, scaled_jacobians, tangled_cells,

@@ -1,10 +1,9 @@
 //! The topology of a polygon surface without building its map: the open edges and
 //! Euler characteristic that [`build_surface_map`] and counting its cells would give,
-//! from a sorted array of half-edges and a union-find over corners (a third of the map's
-//! memory, for checking a large output before it is written).
+//! from the half-edges by vertex and a union-find over corners (12 bytes per corner,
+//! for checking a large output before it is written).
 
-use rayon::prelude::*;
-
+use super::half_edges::HalfEdges;
 use super::indexed::IndexedMesh;
 #[cfg(doc)]
 use super::surface::build_surface_map;
@@ -33,75 +32,52 @@ pub struct SurfaceTopology {
 /// assert_eq!((t.open_edges, t.euler_characteristic), (4, 1)); // a disk
 /// ```
 pub fn surface_topology(mesh: &IndexedMesh) -> Option<SurfaceTopology> {
-    let n_points = mesh.points.len() as u32;
-    // Corners of the polygons kept, as (first corner, size) runs.
-    let mut polygons: Vec<(u32, u32)> = Vec::with_capacity(mesh.nb_polygons());
-    let mut corners: Vec<u32> = Vec::with_capacity(mesh.poly_conn.len());
-    for i in 0..mesh.nb_polygons() {
-        let p = mesh.polygon(i);
-        if p.iter().any(|&v| v >= n_points) {
+    let degenerate = |p: &[u32]| p.len() < 3 || (0..p.len()).any(|k| p[k] == p[(k + 1) % p.len()]);
+    let half = HalfEdges::new(mesh, |p| !degenerate(p))?;
+    let conn = &mesh.poly_conn;
+    let target = |h: u32| conn[half.next(h) as usize];
+    // A vertex is as many vertices of the map as fans of corners around it: corner c
+    // (v → w) and the corner after its opposite (w → v) are consecutive in v's fan.
+    let (mut corners, mut paired, mut vertices) = (0usize, 0usize, 0usize);
+    let mut parent: Vec<usize> = Vec::new();
+    for v in 0..mesh.points.len() as u32 {
+        let at = half.at(v);
+        if at.iter().any(|&c| at.iter().filter(|&&x| target(x) == target(c)).count() > 1) {
             return None;
         }
-        let n = p.len();
-        if n < 3 || (0..n).any(|k| p[k] == p[(k + 1) % n]) {
-            continue;
-        }
-        polygons.push((corners.len() as u32, n as u32));
-        corners.extend_from_slice(p);
-    }
-    let next = |(s, n): (u32, u32), k: u32| s + (k + 1) % n;
-    // Half-edge of corner h: corners[h] → the next corner's vertex.
-    let mut half: Vec<(u64, u32)> = Vec::with_capacity(corners.len());
-    for &(s, n) in &polygons {
-        for k in 0..n {
-            let (u, v) = (corners[(s + k) as usize], corners[next((s, n), k) as usize]);
-            half.push(((u64::from(u) << 32) | u64::from(v), s + k));
-        }
-    }
-    half.par_sort_unstable();
-    if half.windows(2).any(|w| w[0].0 == w[1].0) {
-        return None;
-    }
-    let twin = |key: u64| {
-        let reversed = key.rotate_left(32);
-        half.binary_search_by_key(&reversed, |h| h.0).ok().map(|i| half[i].1)
-    };
-    // Around the target v of half-edge h (u → v), the corner after h in its polygon and
-    // the corner of its opposite (v → u) are consecutive in v's fan.
-    let mut parent: Vec<u32> = (0..corners.len() as u32).collect();
-    let (mut paired, mut joined) = (0usize, 0usize);
-    for &(s, n) in &polygons {
-        for k in 0..n {
-            let h = (s + k) as usize;
-            let key = (u64::from(corners[h]) << 32) | u64::from(corners[next((s, n), k) as usize]);
-            if let Some(t) = twin(key) {
-                paired += 1;
-                if union(&mut parent, next((s, n), k), t) {
-                    joined += 1;
-                }
+        corners += at.len();
+        parent.clear();
+        parent.extend(0..at.len());
+        let mut fans = at.len();
+        for (i, &c) in at.iter().enumerate() {
+            let Some(t) = half.find(conn, target(c), v) else { continue };
+            paired += 1;
+            let j = at.iter().position(|&x| x == half.next(t)).expect("the corner after an opposite is at v");
+            if union(&mut parent, i, j) {
+                fans -= 1;
             }
         }
+        vertices += fans;
     }
-    let open = corners.len() - paired;
-    let (v, e, f) = (corners.len() - joined, paired / 2 + open, polygons.len());
-    Some(SurfaceTopology { open_edges: open, euler_characteristic: v as i64 - e as i64 + f as i64 })
+    let open = corners - paired;
+    let (e, f) = (paired / 2 + open, half.polygons);
+    Some(SurfaceTopology { open_edges: open, euler_characteristic: vertices as i64 - e as i64 + f as i64 })
 }
 
 /// Joins the sets of `a` and `b`; whether they were apart.
-fn union(parent: &mut [u32], a: u32, b: u32) -> bool {
+fn union(parent: &mut [usize], a: usize, b: usize) -> bool {
     let (ra, rb) = (root(parent, a), root(parent, b));
     if ra == rb {
         return false;
     }
-    parent[ra.max(rb) as usize] = ra.min(rb);
+    parent[ra.max(rb)] = ra.min(rb);
     true
 }
 
-fn root(parent: &mut [u32], mut x: u32) -> u32 {
-    while parent[x as usize] != x {
-        let up = parent[parent[x as usize] as usize];
-        parent[x as usize] = up;
-        x = up;
+fn root(parent: &mut [usize], mut x: usize) -> usize {
+    while parent[x] != x {
+        parent[x] = parent[parent[x]];
+        x = parent[x];
     }
     x
 }
