@@ -40,33 +40,40 @@ fn case_key(configuration: u8, cell: [usize; 3]) -> usize {
     })
 }
 
-/// Query-replaces the case `key` on the map of a unit cube at (1, 1, 1) and its lower
-/// neighbours; None when a vertex of its surface is not on an edge or a cell is unmatched.
-fn compile(key: usize, set: &PatternSet, flags: McFlags) -> Option<Case> {
-    let configuration = (key & 0xff) as u8;
+/// Query-replaces the cases `keys`, each on a unit cube and its lower neighbours, all in
+/// one map (case n at x = 4n + 1, apart from the others: one march for all, each cell's
+/// darts in the order the whole grid gives them); None when a vertex of a surface is not
+/// on an edge or a cell is unmatched.
+fn compile(keys: &[usize], set: &PatternSet, flags: McFlags) -> Option<Vec<Case>> {
+    const SPACING: usize = 4;
     let mut cells = IndexedMesh::new();
-    cells.points = (0..27).map(|p| [p / 9, p / 3 % 3, p % 3].map(|x| x as f64)).collect();
-    let point = |o: [usize; 3]| (9 * o[0] + 3 * o[1] + o[2]) as u32;
-    // In the order of the whole grid's cells (k, then j, then i): the neighbours first.
-    for axis in [2, 1, 0] {
-        if key >> (8 + axis) & 1 == 1 {
-            let at = LOWER_FACES[axis].1;
-            cells.push_cell(CellKind::Hex, &CORNERS.map(|c| point([0, 1, 2].map(|x| at[x] + c[x]))), None);
-        }
+    for n in 0..keys.len() {
+        cells.points.extend((0..27).map(|p| [SPACING * n + p / 9, p / 3 % 3, p % 3].map(|x| x as f64)));
     }
-    cells.push_cell(CellKind::Hex, &CORNERS.map(|c| point(c.map(|x| x + 1))), None);
+    for (n, &key) in keys.iter().enumerate() {
+        let point = |o: [usize; 3]| (27 * n + 9 * o[0] + 3 * o[1] + o[2]) as u32;
+        // In the order of the whole grid's cells (k, then j, then i): the neighbours first.
+        for axis in [2, 1, 0] {
+            if key >> (8 + axis) & 1 == 1 {
+                let at = LOWER_FACES[axis].1;
+                cells.push_cell(CellKind::Hex, &CORNERS.map(|c| point([0, 1, 2].map(|x| at[x] + c[x]))), None);
+            }
+        }
+        cells.push_cell(CellKind::Hex, &CORNERS.map(|c| point(c.map(|x| x + 1))), None);
+    }
     let (mut map, _) = build_map(cells, &BuildOptions::default()).ok()?;
-    // The main cube's corner of each vertex (None for a neighbour's own corners).
-    let corner: Vec<Option<u8>> = (0..map.nb_vertex_ids() as u32)
+    // The case and main-cube corner of each vertex (no corner for a neighbour's own).
+    let place: Vec<(usize, Option<u8>)> = (0..map.nb_vertex_ids() as u32)
         .map(|v| {
             let p = map.position(v).map(|x| x as usize);
-            CORNERS.iter().position(|c| (0..3).all(|x| c[x] + 1 == p[x])).map(|c| c as u8)
+            let (n, local) = (p[0] / SPACING, [p[0] % SPACING, p[1], p[2]]);
+            (n, CORNERS.iter().position(|c| (0..3).all(|x| c[x] + 1 == local[x])).map(|c| c as u8))
         })
         .collect();
-    let inside: Vec<bool> = corner.iter().map(|c| c.is_some_and(|c| configuration >> c & 1 == 1)).collect();
+    let inside: Vec<bool> = place.iter().map(|&(n, c)| c.is_some_and(|c| keys[n] >> c & 1 == 1)).collect();
     let owns = |vertices: &mut dyn Iterator<Item = u32>| {
         for v in vertices {
-            if corner[v as usize].is_none() {
+            if place[v as usize].1.is_none() {
                 return false;
             }
         }
@@ -76,14 +83,18 @@ fn compile(key: usize, set: &PatternSet, flags: McFlags) -> Option<Case> {
     if m.report.unmatched_volumes + m.report.unmatched_faces > 0 {
         return None;
     }
-    let edge = |e: Option<[u32; 2]>| e.and_then(|[a, b]| Some([corner[a as usize]?, corner[b as usize]?]));
-    let edges: Option<Vec<[u8; 2]>> = m.edge_ends.iter().map(|&e| edge(e)).collect();
-    let edges = edges?;
-    Some(
-        (0..m.surface.nb_polygons())
-            .map(|i| m.surface.polygon(i).iter().map(|&v| edges[v as usize]).collect())
-            .collect(),
-    )
+    let edge = |e: Option<[u32; 2]>| {
+        let [a, b] = e?;
+        Some((place[a as usize].0, [place[a as usize].1?, place[b as usize].1?]))
+    };
+    let edges: Vec<(usize, [u8; 2])> = m.edge_ends.iter().map(|&e| edge(e)).collect::<Option<_>>()?;
+    let mut cases: Vec<Case> = vec![Vec::new(); keys.len()];
+    for i in 0..m.surface.nb_polygons() {
+        let poly = m.surface.polygon(i);
+        let n = edges[poly[0] as usize].0;
+        cases[n].push(poly.iter().map(|&v| edges[v as usize].1).collect());
+    }
+    Some(cases)
 }
 
 /// Marching cubes of `grid` by compiled cases (see the module); None when a case does
@@ -112,10 +123,12 @@ pub(super) fn march_compiled(
         )
         .reduce(|| vec![false; 1 << 11], |a, b| a.iter().zip(&b).map(|(x, y)| x | y).collect());
     let keys: Vec<usize> = (0..needed.len()).filter(|&k| needed[k]).collect();
-    let compiled: Vec<Option<Case>> = keys.par_iter().map(|&k| compile(k, set, flags)).collect();
+    // (64 cases per map: the maps are marched on all cores)
+    let compiled: Vec<Vec<Case>> = keys.par_chunks(64).map(|k| compile(k, set, flags)).collect::<Option<_>>()?;
+    let compiled = compiled.concat();
     let mut cases: Vec<Option<&Case>> = vec![None; 1 << 11];
     for (&k, c) in keys.iter().zip(&compiled) {
-        cases[k] = Some(c.as_ref()?);
+        cases[k] = Some(c);
     }
     let compile_seconds = t.elapsed().as_secs_f64();
     let t = std::time::Instant::now();

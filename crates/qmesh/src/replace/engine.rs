@@ -154,7 +154,7 @@ pub fn replace_cells(
         let mut plans: Vec<Option<Option<FacePattern>>> = vec![None; set.patterns.len()];
         for chunk in faces.chunks(LOOKUP_CHUNK) {
             let t = Instant::now();
-            let found: Vec<_> = chunk.par_iter().map(|&d| find_face(map, set, flags, d, use_signatures)).collect();
+            let found = on_cores(chunk, |d| find_face(map, set, flags, d, use_signatures));
             r.query_seconds += t.elapsed().as_secs_f64();
             let t = Instant::now();
             for (&d, found) in chunk.iter().zip(found) {
@@ -181,7 +181,7 @@ pub fn replace_cells(
         let mut children = ChildRecorder::default();
         for chunk in volumes.chunks(LOOKUP_CHUNK) {
             let t = Instant::now();
-            let found: Vec<_> = chunk.par_iter().map(|&d| find_volume(map, set, flags, d, use_signatures)).collect();
+            let found = on_cores(chunk, |d| find_volume(map, set, flags, d, use_signatures));
             r.query_seconds += t.elapsed().as_secs_f64();
             let t = Instant::now();
             for (&d, found) in chunk.iter().zip(found) {
@@ -208,6 +208,12 @@ pub fn replace_cells(
     }
     r.uncovered = coverage.into_list();
     r
+}
+
+/// `f` of every dart of `cells`, in order, on all cores (on this one for a few cells,
+/// where handing them out costs more than looking them up).
+fn on_cores<T: Send>(cells: &[Dart], f: impl Fn(Dart) -> T + Sync) -> Vec<T> {
+    if cells.len() < 64 { cells.iter().map(|&d| f(d)).collect() } else { cells.par_iter().map(|&d| f(d)).collect() }
 }
 
 /// Finds one dart per volume among the `created` darts of a replacement (every new
