@@ -24,5 +24,7 @@ run subdivision python3 bench/subdivision.py --runs "$RUNS"
 run recombine python3 bench/recombine.py --runs "$RUNS"
 python3 -m pip install --quiet gmsh
 run recombine_cad python3 bench/recombine_cad.py --runs "$RUNS"
+python3 -m pip install --quiet vtk scikit-image
+run marching_cubes python3 bench/marching_cubes.py --runs "$RUNS"
 run python_overhead python3 bench/python_overhead.py target/release/qmesh "$DATA" 5
 echo "tables in $OUT" >&2
