@@ -2,6 +2,7 @@
 
 mod cmd;
 mod memory;
+mod phases;
 mod progress;
 
 use std::process::ExitCode;

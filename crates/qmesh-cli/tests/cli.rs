@@ -245,6 +245,35 @@ fn octree_pipeline_subdivide_conformal_info() {
     assert_eq!((back.kinds.clone(), back.conn.clone()), (m.kinds.clone(), m.conn.clone()));
     let t = json_of(&["tet2hex", &s(&tets), "-o", &s(&temp("h.vtk")), "--json"]);
     assert_eq!(t["cell_types"]["hex"], 4 * 48);
+    // Each pipeline's phases account for its run (issue 16 item 3).
+    let patterns = temp("tet2hex_patterns");
+    let (code, _, err) = qmesh(&["patterns", "generate", "tet2hex", "-o", &s(&patterns)]);
+    assert_eq!(code, 0, "{err}");
+    let r = json_of(&[
+        "replace",
+        &s(&tets),
+        &s(&temp("r.vtk")),
+        "--patterns",
+        &s(&patterns),
+        "--split-edges",
+        "2",
+        "--json",
+    ]);
+    for (j, names) in [
+        (&c, &["read", "hanging", "build", "select", "lookup", "apply", "count", "validate", "write"][..]),
+        (&t, &["read", "split_edges", "lookup", "apply", "select", "validate", "extract", "write"][..]),
+        (&r, &["read", "split_edges", "lookup", "apply", "select", "validate", "write"][..]),
+    ] {
+        let phases = j["phases"].as_object().unwrap_or_else(|| panic!("phases in {j}"));
+        for n in names {
+            assert!(phases[*n].as_f64().is_some_and(|x| x >= 0.0), "{n} in {phases:?}");
+        }
+        let sum: f64 = phases.iter().filter(|(k, _)| *k != "total").map(|(_, v)| v.as_f64().unwrap()).sum();
+        assert!((sum - phases["total"].as_f64().unwrap()).abs() < 1e-9, "{phases:?}");
+    }
+    let inner = &c["phases"];
+    let replace = inner["lookup"].as_f64().unwrap() + inner["apply"].as_f64().unwrap();
+    assert!(replace <= c["seconds"].as_f64().unwrap() + 1e-9, "{inner}");
 }
 
 #[test]

@@ -44,19 +44,27 @@ pub fn run(a: Args) -> Result<ExitCode> {
     if set.count(PatternKind::Volume) == 0 {
         bail!("no v-pattern in {}", super::patterns::path_list(&a.patterns));
     }
+    let mut phases = crate::phases::Phases::start();
     let mesh = match read(&a.input, parse_format(&a.format)?)? {
         Loaded::Indexed(m) if m.is_volume() => m,
         _ => bail!("{}: expected a hexahedral volume mesh", a.input.display()),
     };
     let pb = crate::progress::spinner("conformal", a.report.quiet || a.report.json);
+    phases.lap("read");
     let (map, r) = conformal(&mesh, &set, !a.no_signatures)?;
     pb.finish_and_clear();
+    phases.lap_inner("check_octree", &r.phases.list());
     let valid = map.is_valid().is_empty();
+    phases.lap("validate");
     let nonconformal = qmesh::build::non_conformal_faces(&map);
+    phases.lap("conformity");
     let (mut cells, _) = extract(&map);
     cells.set_cell_array("pattern_id", CellValues::Int(volume_values(&map, &r.replace.created_volumes, -1)));
+    phases.lap("extract");
     let quality = qmesh::build::quality_by_kind(&cells);
+    phases.lap("quality");
     write_indexed(&a.output.output, &cells, out_format, &WriteOptions::default())?;
+    phases.lap("write");
     let k = &r.kinds;
     let rep = &r.replace;
     if a.report.json {
@@ -79,6 +87,7 @@ pub fn run(a: Args) -> Result<ExitCode> {
             "query_seconds": rep.query_seconds,
             "replace_seconds": rep.replace_seconds,
             "seconds": r.seconds,
+            "phases": phases.json(),
         });
         println!("{}", serde_json::to_string_pretty(&j)?);
     } else if !a.report.quiet {

@@ -54,7 +54,9 @@ pub fn run(a: Args) -> Result<ExitCode> {
         bail!("no usable pattern in {}", super::patterns::path_list(&a.patterns));
     }
     let opts = BuildOptions { fix_orientation: a.input.fix_orientation };
+    let mut phases = crate::phases::Phases::start();
     let mut loaded = load_map(&a.input.input, parse_format(&a.input.format)?, &opts)?;
+    phases.lap("read");
     let before = loaded.map.count_cells();
     let pb = crate::progress::spinner("query-replace", a.report.quiet || a.report.json);
     let r = query_replace(
@@ -63,8 +65,10 @@ pub fn run(a: Args) -> Result<ExitCode> {
         &ReplaceOptions { split_edges: a.split_edges, flags: a.flags.into(), use_signatures: !a.no_signatures },
     )?;
     pb.finish_and_clear();
+    phases.lap_replace("select", &r);
     let violations = loaded.map.is_valid();
     let after = loaded.map.count_cells();
+    phases.lap("validate");
     match resolve_format(&a.output, None)? {
         // Volume formats get the cells with the index of the pattern that made each one.
         f @ (Format::Vtk | Format::Vtu) if loaded.map.dimension() == 3 => {
@@ -75,6 +79,7 @@ pub fn run(a: Args) -> Result<ExitCode> {
         }
         _ => write_map(&a.output, &loaded.map, None, &WriteOptions::default())?,
     }
+    phases.lap("write");
     let kinds = count_cell_kinds(&loaded.map);
     if a.report.json {
         let j = json!({
@@ -96,6 +101,7 @@ pub fn run(a: Args) -> Result<ExitCode> {
             "valid": violations.is_empty(),
             "query_seconds": r.query_seconds,
             "replace_seconds": r.replace_seconds,
+            "phases": phases.json(),
         });
         println!("{}", serde_json::to_string_pretty(&j)?);
     } else if !a.report.quiet {

@@ -30,7 +30,9 @@ pub fn run(a: Args) -> Result<ExitCode> {
     a.output.check_against(&a.input.input)?;
     let out_format = resolve_format(&a.output.output, None)?;
     let opts = BuildOptions { fix_orientation: a.input.fix_orientation };
+    let mut phases = crate::phases::Phases::start();
     let mut loaded = load_map(&a.input.input, parse_format(&a.input.format)?, &opts)?;
+    phases.lap("read");
     let before = loaded.map.count_cells();
     let input_kinds = count_cell_kinds(&loaded.map);
     let others = before.volumes - input_kinds.tet;
@@ -49,13 +51,19 @@ pub fn run(a: Args) -> Result<ExitCode> {
     }
     let set = super::patterns::load_sets(&a.patterns)?;
     let pb = crate::progress::spinner("tet2hex", a.report.quiet || a.report.json);
+    phases.lap("patterns");
     let r = tet_to_hex(&mut loaded.map, set.as_ref(), true)?;
     pb.finish_and_clear();
+    phases.lap_replace("select", &r);
     let valid = loaded.map.is_valid().is_empty();
+    phases.lap("validate");
     let (mut cells, kinds) = extract(&loaded.map);
     cells.set_cell_array("pattern_id", CellValues::Int(volume_values(&loaded.map, &r.created_volumes, -1)));
+    phases.lap("extract");
     let quality = quality_by_kind(&cells);
+    phases.lap("quality");
     write_indexed(&a.output.output, &cells, out_format, &WriteOptions::default())?;
+    phases.lap("write");
     if a.report.json {
         let j = json!({
             "input": a.input.input.display().to_string(),
@@ -70,6 +78,7 @@ pub fn run(a: Args) -> Result<ExitCode> {
             "valid": valid,
             "query_seconds": r.query_seconds,
             "replace_seconds": r.replace_seconds,
+            "phases": phases.json(),
         });
         println!("{}", serde_json::to_string_pretty(&j)?);
     } else if !a.report.quiet {

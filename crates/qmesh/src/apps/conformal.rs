@@ -36,6 +36,35 @@ pub struct ConformalReport {
     pub replace: ReplaceReport,
     pub kinds: ExtractedKinds,
     pub seconds: f64,
+    /// Where the time went (seconds): the hanging vertices inserted, the map built, the
+    /// box corners flagged and the cells to replace chosen, the patterns looked up and
+    /// applied, the cells counted.
+    pub phases: ConformalPhases,
+}
+
+/// The phases of [`conformal`] (seconds).
+#[derive(Clone, Debug, Default, serde::Serialize)]
+pub struct ConformalPhases {
+    pub hanging: f64,
+    pub build: f64,
+    pub select: f64,
+    pub lookup: f64,
+    pub apply: f64,
+    pub count: f64,
+}
+
+impl ConformalPhases {
+    /// The phases by name, in order.
+    pub fn list(&self) -> [(&'static str, f64); 6] {
+        [
+            ("hanging", self.hanging),
+            ("build", self.build),
+            ("select", self.select),
+            ("lookup", self.lookup),
+            ("apply", self.apply),
+            ("count", self.count),
+        ]
+    }
 }
 
 /// Whether cell `c` is an axis-aligned box: a hexahedron whose 8 nodes are the corners
@@ -79,8 +108,20 @@ pub fn conformal(
     if let Some(cell) = (0..mesh.nb_cells()).find(|&c| !is_box_cell(mesh, c)) {
         return Err(ConformalError::NotOctree { cell });
     }
+    let mut phases = ConformalPhases::default();
+    let mut lap = {
+        let mut last = Instant::now();
+        move || {
+            let now = Instant::now();
+            let s = (now - last).as_secs_f64();
+            last = now;
+            s
+        }
+    };
     let (cells, hanging) = insert_hanging_vertices(mesh)?;
+    phases.hanging = lap();
     let (mut map, _) = build_map(cells, &BuildOptions { fix_orientation: true })?;
+    phases.build = lap();
     let flag = map.reserve_mark()?;
     let mut w = OrbitWalker::new();
     let mut volumes = Vec::new();
@@ -92,8 +133,11 @@ pub fn conformal(
         }
     }
     let faces: Vec<Dart> = map.cells(Orbit::Face).filter(|&d| map.face_degree(d) > 4).collect();
+    phases.select = lap();
     let replace = replace_cells(&mut map, set, Flags::Mark(flag), &faces, &volumes, use_signatures);
     map.free_mark(flag);
+    (phases.lookup, phases.apply) = (replace.query_seconds, lap() - replace.query_seconds);
     let kinds = count_cell_kinds(&map);
-    Ok((map, ConformalReport { hanging, replace, kinds, seconds: t.elapsed().as_secs_f64() }))
+    phases.count = lap();
+    Ok((map, ConformalReport { hanging, replace, kinds, seconds: t.elapsed().as_secs_f64(), phases }))
 }

@@ -3,6 +3,7 @@
 //! centres inserted into its faces, so that the map built from it sews every fine face
 //! to the matching part of the coarse face (2022 Algorithm 7, first step).
 
+use rayon::prelude::*;
 use rustc_hash::FxHashMap;
 
 use crate::build::{CellKind, IndexedMesh};
@@ -52,6 +53,95 @@ impl PointIndex {
     }
 }
 
+/// Cells rewritten by one core: their kinds, labels and nodes (polyhedron streams), the
+/// hanging vertices met.
+struct Rewritten {
+    kinds: Vec<(CellKind, Option<i32>)>,
+    offsets: Vec<usize>,
+    nodes: Vec<u32>,
+    hanging: Vec<u32>,
+    polyhedra: usize,
+}
+
+impl Default for Rewritten {
+    fn default() -> Self {
+        Rewritten { kinds: Vec::new(), offsets: vec![0], nodes: Vec::new(), hanging: Vec::new(), polyhedra: 0 }
+    }
+}
+
+impl Rewritten {
+    /// Appends cell `c` of `mesh`: a hexahedron with vertices on its edges or at its
+    /// face centres becomes a polyhedron whose faces hold them.
+    fn cell(&mut self, mesh: &IndexedMesh, index: &PointIndex, c: usize) -> Result<(), HangingError> {
+        let (kind, n) = mesh.cell(c);
+        let label = mesh.label(c);
+        if kind != CellKind::Hex {
+            self.push(kind, label, n);
+            return Ok(());
+        }
+        let p = |v: u32| mesh.points[v as usize];
+        let mut stream: Vec<u32> = vec![0];
+        let mut nb_faces = 0;
+        let mut changed = false;
+        for f in CellKind::Hex.face_table() {
+            // The table gives map (inward) order; polyhedron faces are outward.
+            let corners: Vec<u32> = f.iter().rev().map(|&k| n[k]).collect();
+            let mids: Vec<Option<u32>> = (0..4)
+                .map(|i| {
+                    let (a, b) = (corners[i], corners[(i + 1) % 4]);
+                    if index.at(lerp(p(a), p(b), 0.25)).is_some() || index.at(lerp(p(a), p(b), 0.75)).is_some() {
+                        return Err(HangingError::Unbalanced { cell: c, a, b });
+                    }
+                    Ok(index.at(lerp(p(a), p(b), 0.5)))
+                })
+                .collect::<Result<_, _>>()?;
+            // (a centre is only used when the four edges are split)
+            let all_split = mids.iter().all(Option::is_some);
+            let centre = all_split
+                .then(|| {
+                    index.at(lerp(
+                        lerp(p(corners[0]), p(corners[1]), 0.5),
+                        lerp(p(corners[3]), p(corners[2]), 0.5),
+                        0.5,
+                    ))
+                })
+                .flatten();
+            let mut polys: Vec<Vec<u32>> = Vec::new();
+            match (centre, all_split) {
+                (Some(z), true) => {
+                    for i in 0..4 {
+                        let (m, prev) = (mids[i].unwrap_or(0), mids[(i + 3) % 4].unwrap_or(0));
+                        polys.push(vec![corners[i], m, z, prev]);
+                    }
+                    self.hanging.push(z);
+                }
+                _ => polys.push((0..4).flat_map(|i| std::iter::once(corners[i]).chain(mids[i])).collect()),
+            }
+            self.hanging.extend(mids.iter().flatten());
+            changed |= polys.len() > 1 || polys[0].len() > 4;
+            for poly in polys {
+                stream.push(poly.len() as u32);
+                stream.extend(poly);
+                nb_faces += 1;
+            }
+        }
+        if changed {
+            stream[0] = nb_faces;
+            self.push(CellKind::Polyhedron, label, &stream);
+            self.polyhedra += 1;
+        } else {
+            self.push(kind, label, n);
+        }
+        Ok(())
+    }
+
+    fn push(&mut self, kind: CellKind, label: Option<i32>, nodes: &[u32]) {
+        self.kinds.push((kind, label));
+        self.nodes.extend_from_slice(nodes);
+        self.offsets.push(self.nodes.len());
+    }
+}
+
 fn lerp(a: [f64; 3], b: [f64; 3], t: f64) -> [f64; 3] {
     [0, 1, 2].map(|k| a[k] + t * (b[k] - a[k]))
 }
@@ -86,60 +176,28 @@ pub fn insert_hanging_vertices(mesh: &IndexedMesh) -> Result<(IndexedMesh, Hangi
         return Ok((out, report));
     }
     let index = PointIndex::new(&mesh.points, shortest);
+    // Cells are rewritten on all cores, a run at a time, and appended in order.
+    let runs: Vec<Result<Rewritten, HangingError>> = (0..mesh.nb_cells())
+        .collect::<Vec<_>>()
+        .par_chunks(4096)
+        .map(|cells| {
+            let mut run = Rewritten::default();
+            for &c in cells {
+                run.cell(mesh, &index, c)?;
+            }
+            Ok(run)
+        })
+        .collect();
     let mut hanging = vec![false; mesh.points.len()];
-    for c in 0..mesh.nb_cells() {
-        let (kind, n) = mesh.cell(c);
-        let label = mesh.label(c);
-        if kind != CellKind::Hex {
-            out.push_cell(kind, n, label);
-            continue;
+    for run in runs {
+        let run = run?;
+        for (k, &(kind, label)) in run.kinds.iter().enumerate() {
+            out.push_cell(kind, &run.nodes[run.offsets[k]..run.offsets[k + 1]], label);
         }
-        let p = |v: u32| mesh.points[v as usize];
-        let mut stream: Vec<u32> = vec![0];
-        let mut nb_faces = 0;
-        let mut changed = false;
-        for f in faces_in {
-            // The table gives map (inward) order; polyhedron faces are outward.
-            let corners: Vec<u32> = f.iter().rev().map(|&k| n[k]).collect();
-            let mids: Vec<Option<u32>> = (0..4)
-                .map(|i| {
-                    let (a, b) = (corners[i], corners[(i + 1) % 4]);
-                    if index.at(lerp(p(a), p(b), 0.25)).is_some() || index.at(lerp(p(a), p(b), 0.75)).is_some() {
-                        return Err(HangingError::Unbalanced { cell: c, a, b });
-                    }
-                    Ok(index.at(lerp(p(a), p(b), 0.5)))
-                })
-                .collect::<Result<_, _>>()?;
-            let centre =
-                index.at(lerp(lerp(p(corners[0]), p(corners[1]), 0.5), lerp(p(corners[3]), p(corners[2]), 0.5), 0.5));
-            let mut polys: Vec<Vec<u32>> = Vec::new();
-            match (centre, mids.iter().all(Option::is_some)) {
-                (Some(z), true) => {
-                    for i in 0..4 {
-                        let (m, prev) = (mids[i].unwrap_or(0), mids[(i + 3) % 4].unwrap_or(0));
-                        polys.push(vec![corners[i], m, z, prev]);
-                    }
-                    hanging[z as usize] = true;
-                }
-                _ => polys.push((0..4).flat_map(|i| std::iter::once(corners[i]).chain(mids[i])).collect()),
-            }
-            for m in mids.iter().flatten() {
-                hanging[*m as usize] = true;
-            }
-            changed |= polys.len() > 1 || polys[0].len() > 4;
-            for poly in polys {
-                stream.push(poly.len() as u32);
-                stream.extend(poly);
-                nb_faces += 1;
-            }
+        for v in run.hanging {
+            hanging[v as usize] = true;
         }
-        if changed {
-            stream[0] = nb_faces;
-            out.push_cell(CellKind::Polyhedron, &stream, label);
-            report.cells_with_hanging += 1;
-        } else {
-            out.push_cell(kind, n, label);
-        }
+        report.cells_with_hanging += run.polyhedra;
     }
     report.hanging_vertices = hanging.iter().filter(|&&h| h).count();
     out.cell_arrays = mesh.cell_arrays.clone();

@@ -49,7 +49,10 @@ pub struct ReplaceReport {
     pub unmatched_faces: usize,
     pub unmatched_volumes: usize,
     pub query_seconds: f64,
+    /// Replacing, edge splits included.
     pub replace_seconds: f64,
+    /// Of `replace_seconds`, splitting the edges (the e-pattern).
+    pub split_seconds: f64,
     /// Configurations no pattern matched (2022 §6.4 coverage), most frequent first.
     #[serde(skip)]
     pub uncovered: Vec<Uncovered>,
@@ -126,6 +129,7 @@ pub fn query_replace(map: &mut CMap3, set: &PatternSet, opts: &ReplaceOptions) -
     let mut r = replace_cells(map, set, Flags::Mark(mark), &faces, &volumes, opts.use_signatures);
     r.edges_split = edges_split;
     r.replace_seconds += split_seconds;
+    r.split_seconds = split_seconds;
     map.free_mark(mark);
     Ok(r)
 }
