@@ -32,21 +32,27 @@ pub(crate) fn cell_of(root: RootBox, b: &Aabb) -> OctCell {
     OctCell { level, ijk: [0, 1, 2].map(|k| ((b.lo[k] - root.lo[k]) / s[k]).round().max(0.0) as u32) }
 }
 
-/// Flags with `mark` the darts of the volume of `d` (whose box is `b`) that start at a
+/// Flags with `mark` the darts of a volume (collected, whose box is `b`) that start at a
 /// corner of the box and run along a box edge (their end shares two coordinates).
-pub(crate) fn flag_box_corners(map: &mut CMap3, mark: Mark, d: Dart, b: &Aabb, w: &mut OrbitWalker) {
-    let volume = w.collect(map, d, Orbit::Volume).to_vec();
-    flag_box_corners_of(map, mark, &volume, b);
+pub(crate) fn flag_box_corners_of(map: &mut CMap3, mark: Mark, volume: &[Dart], b: &Aabb) {
+    let corners: Vec<Dart> = box_corner_darts(map, volume, b).collect();
+    for x in corners {
+        map.mark(x, mark);
+    }
 }
 
-/// [`flag_box_corners`] on the darts of a volume already collected.
-pub(crate) fn flag_box_corners_of(map: &mut CMap3, mark: Mark, volume: &[Dart], b: &Aabb) {
+/// The darts of `volume` (whose box is `b`) that [`flag_box_corners_of`] flags.
+pub(crate) fn box_corner_darts<'a>(map: &'a CMap3, volume: &'a [Dart], b: &'a Aabb) -> impl Iterator<Item = Dart> + 'a {
     let e = b.extent();
-    for &x in volume {
+    volume.iter().copied().filter(move |&x| {
         let (p, q) = (map.point(x), map.point(map.next(x)));
         let along_edge = (0..3).filter(|&k| (p[k] - q[k]).abs() <= LATTICE_TOL * e[k]).count() == 2;
-        if along_edge && is_corner(b, p) {
-            map.mark(x, mark);
-        }
-    }
+        along_edge && is_corner(b, p)
+    })
+}
+
+/// Volumes per walker when `n` volumes are walked on all cores: a few chunks per thread,
+/// as each long-lived walker takes a bit set as large as the map.
+pub(crate) fn walker_chunk(n: usize) -> usize {
+    n.div_ceil(4 * rayon::current_num_threads()).max(1024)
 }

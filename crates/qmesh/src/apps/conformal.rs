@@ -5,7 +5,9 @@
 
 use std::time::Instant;
 
-use super::box_cells::{flag_box_corners, is_corner, volume_box};
+use rayon::prelude::*;
+
+use super::box_cells::{box_corner_darts, is_corner, walker_chunk};
 use super::hanging::{HangingError, HangingReport, insert_hanging_vertices};
 use crate::build::{BuildError, BuildOptions, CellKind, ExtractedKinds, IndexedMesh, build_map, count_cell_kinds};
 use crate::cmap::{CMap3, Dart, MapError, Orbit, OrbitWalker};
@@ -123,15 +125,28 @@ pub fn conformal(
     let (mut map, _) = build_map(cells, &BuildOptions { fix_orientation: true })?;
     phases.build = lap();
     let flag = map.reserve_mark()?;
-    let mut w = OrbitWalker::new();
-    let mut volumes = Vec::new();
-    for d in map.cells(Orbit::Volume).collect::<Vec<Dart>>() {
-        let b = volume_box(&map, d, &mut w);
-        flag_box_corners(&mut map, flag, d, &b, &mut w);
-        if w.collect(&map, d, Orbit::Volume).len() != PLAIN_HEX_DARTS {
-            volumes.push(d);
-        }
+    // Each volume's box corners, and whether it is more than a plain hexahedron (then it
+    // is replaced), found on all cores; then flagged.
+    let reps: Vec<Dart> = map.cells(Orbit::Volume).collect();
+    let (corners, volumes): (Vec<Vec<Dart>>, Vec<Vec<Dart>>) = reps
+        .par_chunks(walker_chunk(reps.len()))
+        .map(|chunk| {
+            let (mut w, mut corners, mut volumes) = (OrbitWalker::new(), Vec::new(), Vec::new());
+            for &d in chunk {
+                let darts = w.collect(&map, d, Orbit::Volume);
+                let b = Aabb::of(darts.iter().map(|&x| map.point(x)));
+                corners.extend(box_corner_darts(&map, darts, &b));
+                if darts.len() != PLAIN_HEX_DARTS {
+                    volumes.push(d);
+                }
+            }
+            (corners, volumes)
+        })
+        .unzip();
+    for x in corners.into_iter().flatten() {
+        map.mark(x, flag);
     }
+    let volumes = volumes.concat();
     let faces: Vec<Dart> = map.cells(Orbit::Face).filter(|&d| map.face_degree(d) > 4).collect();
     phases.select = lap();
     let replace = replace_cells(&mut map, set, Flags::Mark(flag), &faces, &volumes, use_signatures);

@@ -7,7 +7,7 @@ use std::time::Instant;
 
 use rayon::prelude::*;
 
-use super::box_cells::{cell_of, flag_box_corners_of, is_corner, volume_box};
+use super::box_cells::{cell_of, flag_box_corners_of, is_corner, volume_box, walker_chunk};
 use super::generated_patterns::{GeneratedKind, given_or_generated};
 use super::octree::{OctCell, Octree, RootBox};
 use crate::build::{BuildOptions, IndexedMesh, build_map};
@@ -392,12 +392,6 @@ fn refine(
 
 fn midpoint(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
     [0, 1, 2].map(|k| 0.5 * (a[k] + b[k]))
-}
-
-/// Volumes per walker when `n` volumes are walked on all cores: a few chunks per thread,
-/// as each long-lived walker takes a bit set as large as the map.
-fn walker_chunk(n: usize) -> usize {
-    n.div_ceil(4 * rayon::current_num_threads()).max(1024)
 }
 
 /// Each of `volumes` with its box.
