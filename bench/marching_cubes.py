@@ -16,18 +16,15 @@ import argparse
 import json
 import os
 import statistics
-import subprocess
 import sys
 import tempfile
-import time
 
 import numpy as np
 
-from common import DATA, Q, ROOT, sh
+from common import DATA, Q, ROOT, sh, timed
 
 PEER = os.path.join(ROOT, "bench", "mc_peer.py")
 PEERS = ["flying-edges", "marching-cubes", "skimage"]
-GNU_TIME = "/usr/bin/time"
 
 
 def gyroid(n):
@@ -65,14 +62,8 @@ def fields(names, out):
 
 def run(cmd):
     """Wall seconds, peak RSS bytes and parsed JSON stdout of one run of cmd."""
-    with tempfile.NamedTemporaryFile("r") as report:
-        t = time.perf_counter()
-        done = subprocess.run([GNU_TIME, "-f", "%M", "-o", report.name, *cmd], capture_output=True, text=True)
-        wall = time.perf_counter() - t
-        if done.returncode != 0:
-            sys.exit(f"failed: {' '.join(cmd)}\n{done.stderr[-2000:]}")
-        kib = int(report.read().split()[-1])
-    return wall, kib * 1024, json.loads(done.stdout)
+    wall, rss, out = timed(cmd)
+    return wall, rss, json.loads(out)
 
 
 def main():
@@ -81,8 +72,6 @@ def main():
     ap.add_argument("--out", default=None)
     ap.add_argument("--fields", default="gyroid128,gyroid256,noise32,noise64")
     a = ap.parse_args()
-    if not os.access(GNU_TIME, os.X_OK):
-        sys.exit(f"{GNU_TIME} (GNU time, Debian package `time`) is needed for peak memory")
     out = a.out or tempfile.mkdtemp(prefix="qmesh-mc-")
     os.makedirs(out, exist_ok=True)
     sh("cargo", "build", "--release", "--quiet", cwd=ROOT)
@@ -123,9 +112,7 @@ def main():
 
 def run_floor():
     """Peak RSS of a qmesh process that does nothing."""
-    with tempfile.NamedTemporaryFile("r") as report:
-        subprocess.run([GNU_TIME, "-f", "%M", "-o", report.name, Q, "--version"], capture_output=True, check=True)
-        return int(report.read().split()[-1]) * 1024
+    return timed([Q, "--version"])[1]
 
 
 if __name__ == "__main__":

@@ -255,7 +255,7 @@ fn read_f32(path: &std::path::Path) -> Result<Vec<f32>> {
 
 /// Gives the memory freed by the marching (the field, every core's working memory) back
 /// to the system before the surface is triangulated, checked and written: glibc keeps
-/// freed blocks inside each thread's heap otherwise (gyroid 128³: peak RSS 38.1 → 34 MB).
+/// freed blocks inside each thread's heap otherwise (gyroid 128³: peak RSS 37.6 → 35.1 MB).
 fn release_freed_memory() {
     #[cfg(all(target_os = "linux", target_env = "gnu"))]
     // SAFETY: malloc_trim only returns free pages of the allocator's heaps to the kernel.
