@@ -171,6 +171,30 @@ impl Octree {
         }
     }
 
+    /// Leaves with hanging vertices: a face or edge neighbour of the same size was
+    /// refined, which split the shared face or edge (more than 8 vertices; the
+    /// authors' "generic" cells). Only a same-size neighbour shares a whole face or
+    /// edge of a leaf, so no other refinement splits one. Counted on the tree, so the
+    /// direct and the query-replace subdivisions give the same figure.
+    pub fn with_hanging_vertices(&self) -> usize {
+        let mut refined: FxHashSet<OctCell> = FxHashSet::default();
+        for &c in &self.leaves {
+            for l in (0..c.level).rev() {
+                if !refined.insert(c.ancestor(l)) {
+                    break;
+                }
+            }
+        }
+        let has_refined_neighbour = |c: &OctCell| {
+            face_and_edge_offsets().any(|d| {
+                let p = [0, 1, 2].map(|k| i64::from(c.ijk[k]) + d[k]);
+                self.root.contains(c.level, p)
+                    && refined.contains(&OctCell { level: c.level, ijk: p.map(|x| x as u32) })
+            })
+        };
+        self.leaves.par_iter().filter(|c| has_refined_neighbour(c)).count()
+    }
+
     /// Leaves the surface touches, in a stable order.
     pub fn touched(&self, surface: &TriangleBvh, below_level: u8) -> Vec<OctCell> {
         let mut v: Vec<OctCell> = self
@@ -183,51 +207,11 @@ impl Octree {
         v
     }
 
-    /// The leaf holding the same-size neighbour of `c` at offset `d`, if that neighbour
-    /// is inside the root and not subdivided further than `c`.
-    fn leaf_at_or_above(&self, c: OctCell, d: [i64; 3]) -> Option<OctCell> {
-        let p = [0, 1, 2].map(|k| i64::from(c.ijk[k]) + d[k]);
-        if !self.root.contains(c.level, p) {
-            return None;
-        }
-        let same = OctCell { level: c.level, ijk: p.map(|x| x as u32) };
-        (0..=c.level).rev().map(|l| same.ancestor(l)).find(|a| self.leaves.contains(a))
-    }
-
-    /// Leaves outside the surface that it does not touch. The untouched leaves are
-    /// grouped into face-connected regions (the surface cannot separate two face
-    /// neighbours it touches neither of); one winding number per region decides.
+    /// Leaves outside the surface that it does not touch (see [`outside_among`]).
     pub fn outside_leaves(&self, surface: &TriangleBvh) -> Vec<OctCell> {
         let leaves = self.sorted_leaves();
-        let index: FxHashMap<OctCell, usize> = leaves.iter().enumerate().map(|(i, &c)| (c, i)).collect();
         let touched: Vec<bool> = leaves.par_iter().map(|&c| surface.intersects_box(&self.root.cell_box(c))).collect();
-        let mut parent: Vec<usize> = (0..leaves.len()).collect();
-        fn find(parent: &mut [usize], mut i: usize) -> usize {
-            while parent[i] != i {
-                parent[i] = parent[parent[i]];
-                i = parent[i];
-            }
-            i
-        }
-        const FACES: [[i64; 3]; 6] = [[-1, 0, 0], [1, 0, 0], [0, -1, 0], [0, 1, 0], [0, 0, -1], [0, 0, 1]];
-        for (i, &c) in leaves.iter().enumerate().filter(|&(i, _)| !touched[i]) {
-            for d in FACES {
-                if let Some(j) = self.leaf_at_or_above(c, d).map(|n| index[&n]).filter(|&j| !touched[j]) {
-                    let (a, b) = (find(&mut parent, i), find(&mut parent, j));
-                    parent[a.max(b)] = a.min(b);
-                }
-            }
-        }
-        let mut inside: FxHashMap<usize, bool> = FxHashMap::default();
-        let mut out = Vec::new();
-        for i in (0..leaves.len()).filter(|&i| !touched[i]) {
-            let r = find(&mut parent, i);
-            let ins = *inside.entry(r).or_insert_with(|| surface.contains(self.root.cell_box(leaves[r]).centre()));
-            if !ins {
-                out.push(leaves[i]);
-            }
-        }
-        out
+        outside_among(&self.root, &leaves, &touched, surface).into_iter().map(|i| leaves[i]).collect()
     }
 
     /// Leaves sorted by (level, position): a deterministic order for output.
@@ -297,6 +281,56 @@ impl Octree {
         let position = self.lattice_position(&leaves);
         side.par_iter().enumerate().map(|(v, s)| s.unwrap_or_else(|| surface.contains(position(lattice[v])))).collect()
     }
+}
+
+/// The indices of the `cells` (distinct leaves of one octree) outside the surface and
+/// untouched by it (`touched[i]`: the surface meets cell i). The untouched cells are
+/// grouped into face-connected regions (the surface cannot separate two face
+/// neighbours it touches neither of); one winding number per region decides, at the
+/// centre of its first cell in (level, position) order. A neighbour is looked for at
+/// its own size and then coarser, down to the coarsest level among `cells`.
+pub fn outside_among(root: &RootBox, cells: &[OctCell], touched: &[bool], surface: &TriangleBvh) -> Vec<usize> {
+    let mut order: Vec<u32> = (0..cells.len() as u32).filter(|&i| !touched[i as usize]).collect();
+    order.par_sort_unstable_by_key(|&i| cells[i as usize]);
+    // Positions in `order` of the untouched cells.
+    let index: FxHashMap<OctCell, u32> =
+        order.iter().enumerate().map(|(k, &i)| (cells[i as usize], k as u32)).collect();
+    let coarsest = cells.iter().map(|c| c.level).min().unwrap_or(0);
+    let neighbour = |c: OctCell, d: [i64; 3]| {
+        let p = [0, 1, 2].map(|k| i64::from(c.ijk[k]) + d[k]);
+        if !root.contains(c.level, p) {
+            return None;
+        }
+        let same = OctCell { level: c.level, ijk: p.map(|x| x as u32) };
+        (coarsest..=c.level).rev().find_map(|l| index.get(&same.ancestor(l)).copied())
+    };
+    let mut parent: Vec<u32> = (0..order.len() as u32).collect();
+    fn find(parent: &mut [u32], mut i: u32) -> u32 {
+        while parent[i as usize] != i {
+            parent[i as usize] = parent[parent[i as usize] as usize];
+            i = parent[i as usize];
+        }
+        i
+    }
+    const FACES: [[i64; 3]; 6] = [[-1, 0, 0], [1, 0, 0], [0, -1, 0], [0, 1, 0], [0, 0, -1], [0, 0, 1]];
+    for (k, &i) in order.iter().enumerate() {
+        for d in FACES {
+            if let Some(j) = neighbour(cells[i as usize], d) {
+                let (a, b) = (find(&mut parent, k as u32), find(&mut parent, j));
+                parent[a.max(b) as usize] = a.min(b);
+            }
+        }
+    }
+    let mut inside: FxHashMap<u32, bool> = FxHashMap::default();
+    let mut out = Vec::new();
+    for k in 0..order.len() as u32 {
+        let r = find(&mut parent, k);
+        let centre = || root.cell_box(cells[order[r as usize] as usize]).centre();
+        if !*inside.entry(r).or_insert_with(|| surface.contains(centre())) {
+            out.push(order[k as usize] as usize);
+        }
+    }
+    out
 }
 
 #[cfg(test)]

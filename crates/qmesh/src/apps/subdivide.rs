@@ -9,14 +9,14 @@ use rayon::prelude::*;
 
 use super::box_cells::{cell_of, flag_box_corners_of, is_corner, volume_box, walker_chunk};
 use super::generated_patterns::{GeneratedKind, given_or_generated};
-use super::octree::{OctCell, Octree, RootBox};
+use super::octree::{OctCell, Octree, RootBox, outside_among};
 use crate::build::{BuildOptions, IndexedMesh, build_map};
 use crate::cmap::{CMap3, Dart, MapError, Mark, Orbit, OrbitWalker};
 use crate::geom::{Aabb, TriangleBvh};
 use crate::pattern::PatternSet;
 use crate::replace::replace_cells;
 use crate::signature::Flags;
-use rustc_hash::{FxHashMap, FxHashSet};
+use rustc_hash::FxHashMap;
 
 /// The level-0 cells of [`subdivide`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -78,9 +78,8 @@ pub struct SubdivideReport {
     /// Cells dropped as outside the surface (each level drops its own before refining).
     pub removed_outside: usize,
     /// Volumes with hanging vertices (more than 8 vertices: a finer neighbour split a
-    /// face or an edge; the authors' "generic" cells). Counted on the map, so `None`
-    /// with `direct`.
-    pub with_hanging_vertices: Option<usize>,
+    /// face or an edge; the authors' "generic" cells), counted on the octree.
+    pub with_hanging_vertices: usize,
     /// Where the query-replace subdivision spent its time (all zero with `direct`).
     pub phases: SubdividePhases,
     pub seconds: f64,
@@ -130,20 +129,11 @@ pub fn subdivide(
     let t = Instant::now();
     let start = initial_tree(surface, opts.root, opts.margin);
     let root = start.root;
-    let mut hanging = None;
     let (mut tree, map, mut report) = if opts.direct {
         let (tree, r) = subdivide_direct(start, surface, opts.levels, opts.remove_outside, progress);
         (tree, None, r)
     } else {
-        let (map, mut r, leaves) = subdivide_qr(start, surface, opts, patterns, progress)?;
-        let t = Instant::now();
-        let with_hanging = |c: &[Dart]| {
-            let mut w = OrbitWalker::new();
-            c.iter().filter(|&&d| w.collect(&map, d, Orbit::Volume).len() > 24).count()
-        };
-        let darts: Vec<Dart> = leaves.values().copied().collect();
-        hanging = Some(darts.par_chunks(walker_chunk(darts.len())).map(with_hanging).sum());
-        r.phases.finish = t.elapsed().as_secs_f64();
+        let (map, r, leaves) = subdivide_qr(start, surface, opts, patterns, progress)?;
         (Octree { root, leaves: leaves.into_keys().collect() }, Some(map), r)
     };
     if opts.direct && opts.remove_outside {
@@ -151,7 +141,11 @@ pub fn subdivide(
     }
     let mesh = tree.to_mesh();
     report.volumes = tree.leaves.len();
-    report.with_hanging_vertices = hanging;
+    let t_finish = Instant::now();
+    report.with_hanging_vertices = tree.with_hanging_vertices();
+    if !opts.direct {
+        report.phases.finish = t_finish.elapsed().as_secs_f64();
+    }
     report.per_level = vec![0; usize::from(opts.levels) + 1];
     tree.leaves.iter().for_each(|c| report.per_level[usize::from(c.level)] += 1);
     report.seconds = t.elapsed().as_secs_f64();
@@ -230,15 +224,12 @@ fn subdivide_qr(
     r.phases.start = t.elapsed().as_secs_f64();
     for level in 1..=opts.levels + 1 {
         let t = Instant::now();
-        let mut cells = boxes_of(&map, &fresh);
-        leaves.extend(cells.iter().map(|(d, b)| (cell_of(root, b), *d)));
+        let mut cells = fresh_cells(&map, root, surface, &fresh);
+        leaves.extend(cells.iter().map(|c| (c.cell, c.dart)));
         r.phases.contact += t.elapsed().as_secs_f64();
         if opts.remove_outside {
             let t = Instant::now();
-            for (_, b) in remove_outside_volumes(&mut map, root, surface, &mut cells)? {
-                leaves.remove(&cell_of(root, &b));
-                r.removed_outside += 1;
-            }
+            r.removed_outside += remove_outside_volumes(&mut map, root, surface, &mut cells, &mut leaves)?;
             r.phases.remove_outside += t.elapsed().as_secs_f64();
         }
         if level > opts.levels {
@@ -246,13 +237,8 @@ fn subdivide_qr(
         }
         progress(level);
         let parent_level = i32::from(level) - 1;
-        let t = Instant::now();
-        let touched: Vec<Dart> = cells
-            .par_iter()
-            .filter(|(d, b)| map.label_of(*d) == parent_level && surface.intersects_box(b))
-            .map(|&(d, _)| d)
-            .collect();
-        r.phases.contact += t.elapsed().as_secs_f64();
+        let touched: Vec<Dart> =
+            cells.iter().filter(|c| c.touches && map.label_of(c.dart) == parent_level).map(|c| c.dart).collect();
         let t = Instant::now();
         let mut plan = balance_closure(&mut map, &touched, parent_level)?;
         r.phases.balance += t.elapsed().as_secs_f64();
@@ -352,7 +338,8 @@ fn refine(
     for (x, p) in edges {
         map.insert_vertex_in_edge(x, p);
     }
-    // Flags on corner darts; each face listed once.
+    // Flags on corner darts; each face listed once; the cell's darts take the
+    // children's level, which the darts the replacements create copy.
     let flag = map.reserve_mark()?;
     let seen = map.reserve_mark()?;
     let mut faces = Vec::new();
@@ -361,6 +348,9 @@ fn refine(
         volume.clear();
         volume.extend_from_slice(w.collect(map, d, Orbit::Volume));
         flag_box_corners_of(map, flag, &volume, b);
+        for &x in &volume {
+            map.set_label_of(x, child_level);
+        }
         for &x in &volume {
             if !map.is_marked(x, seen) {
                 faces.push(x);
@@ -378,14 +368,6 @@ fn refine(
     r.faces_replaced += rep.faces_replaced;
     r.volumes_replaced += rep.volumes_replaced;
     r.phases.lookup += rep.query_seconds;
-    // Every child keeps some of its parent's boundary darts: relabel through them.
-    for d in old_darts {
-        if map.label_of(d) != child_level {
-            for &x in w.collect(map, d, Orbit::Volume) {
-                map.set_label_of(x, child_level);
-            }
-        }
-    }
     r.phases.apply += t.elapsed().as_secs_f64() - rep.query_seconds;
     Ok((rep.created_volumes.into_iter().map(|(d, _)| d).collect(), boxes))
 }
@@ -394,34 +376,54 @@ fn midpoint(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
     [0, 1, 2].map(|k| 0.5 * (a[k] + b[k]))
 }
 
-/// Each of `volumes` with its box.
-fn boxes_of(map: &CMap3, volumes: &[Dart]) -> Vec<(Dart, Aabb)> {
+/// A volume made by the last refinement: one dart, its octree cell, and whether the
+/// surface meets the cell's box.
+struct FreshCell {
+    dart: Dart,
+    cell: OctCell,
+    touches: bool,
+}
+
+/// Each of `volumes` as a [`FreshCell`], on all cores.
+fn fresh_cells(map: &CMap3, root: RootBox, surface: &TriangleBvh, volumes: &[Dart]) -> Vec<FreshCell> {
     volumes
         .par_chunks(walker_chunk(volumes.len()))
         .flat_map_iter(|c| {
             let mut w = OrbitWalker::new();
-            c.iter().map(move |&d| (d, volume_box(map, d, &mut w)))
+            c.iter().map(move |&dart| {
+                let cell = cell_of(root, &volume_box(map, dart, &mut w));
+                FreshCell { dart, cell, touches: surface.intersects_box(&root.cell_box(cell)) }
+            })
         })
         .collect()
 }
 
-/// Removes from the map the volumes of `cells` (volumes and boxes) outside `surface`
-/// that it does not touch, and from `cells`; returns them.
+/// Removes from the map, from `cells` and from `leaves` the volumes of `cells` outside
+/// `surface` that it does not touch; returns how many.
 fn remove_outside_volumes(
     map: &mut CMap3,
     root: RootBox,
     surface: &TriangleBvh,
-    cells: &mut Vec<(Dart, Aabb)>,
-) -> Result<Vec<(Dart, Aabb)>, MapError> {
-    let tree = Octree { root, leaves: cells.iter().map(|(_, b)| cell_of(root, b)).collect() };
-    let outside: FxHashSet<OctCell> = tree.outside_leaves(surface).into_iter().collect();
+    cells: &mut Vec<FreshCell>,
+    leaves: &mut FxHashMap<OctCell, Dart>,
+) -> Result<usize, MapError> {
+    let octs: Vec<OctCell> = cells.iter().map(|c| c.cell).collect();
+    let touches: Vec<bool> = cells.iter().map(|c| c.touches).collect();
+    let mut outside = outside_among(&root, &octs, &touches, surface);
     if outside.is_empty() {
-        return Ok(Vec::new());
+        return Ok(0);
     }
-    let (gone, kept): (Vec<_>, Vec<_>) = cells.drain(..).partition(|(_, b)| outside.contains(&cell_of(root, b)));
-    *cells = kept;
-    for &(d, _) in &gone {
-        map.remove_volume(d)?;
+    outside.sort_unstable();
+    map.remove_volumes(&outside.iter().map(|&i| cells[i].dart).collect::<Vec<_>>())?;
+    let mut gone = vec![false; cells.len()];
+    for &i in &outside {
+        gone[i] = true;
+        leaves.remove(&cells[i].cell);
     }
-    Ok(gone)
+    let mut i = 0;
+    cells.retain(|_| {
+        i += 1;
+        !gone[i - 1]
+    });
+    Ok(outside.len())
 }

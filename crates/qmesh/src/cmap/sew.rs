@@ -6,8 +6,10 @@
 
 use super::dart::Dart;
 use super::error::MapError;
-use super::orbit::Orbit;
+use super::orbit::{Orbit, OrbitWalker};
 use super::storage::CMap3;
+use rayon::prelude::*;
+use rustc_hash::FxHashSet;
 
 impl CMap3 {
     /// Gives every dart of the vertex orbit of `d` the vertex id of `d`.
@@ -21,32 +23,54 @@ impl CMap3 {
     }
 
     /// After an unsew or a removal: vertex orbits through `touched` that now share an id
-    /// with another orbit get a fresh id at the same position.
+    /// with another orbit get a fresh id at the same position. Of the orbits sharing an
+    /// id, the one met first in `touched` keeps it; the others get fresh ids in the
+    /// order they are met. Ids are independent, so many are checked on all cores.
     pub(crate) fn split_vertex_ids(&mut self, touched: &[Dart]) {
-        let mut claimed: rustc_hash::FxHashMap<u32, Dart> = Default::default();
-        self.with_scratch(|m, w| {
-            for &t in touched {
-                if !m.is_live(t) {
-                    continue;
-                }
-                let id = m.vertex_of(t);
-                match claimed.get(&id) {
-                    None => {
-                        claimed.insert(id, t);
-                    }
-                    Some(&rep) => {
-                        if w.collect(m, rep, Orbit::Vertex).contains(&t) {
-                            continue;
-                        }
-                        let fresh = m.add_vertex(m.position(id));
-                        for &x in w.collect(m, t, Orbit::Vertex) {
-                            m.vertex[x.idx()] = fresh;
-                        }
-                        claimed.insert(fresh, t);
-                    }
+        let mut by_id: Vec<(u32, u32)> = touched
+            .iter()
+            .enumerate()
+            .filter(|&(_, &t)| self.is_live(t))
+            .map(|(i, &t)| (self.vertex_of(t), i as u32))
+            .collect();
+        by_id.sort_unstable();
+        let groups: Vec<&[(u32, u32)]> = by_id.chunk_by(|a, b| a.0 == b.0).filter(|g| g.len() > 1).collect();
+        let map = &*self;
+        // The orbits after the first of one id, each with where it was first met. Most
+        // ids have one orbit: the others are looked for only among the darts outside it.
+        let split_off = |w: &mut OrbitWalker, group: &[(u32, u32)]| {
+            let first = touched[group[0].1 as usize];
+            w.collect(map, first, Orbit::Vertex);
+            let others: Vec<u32> =
+                group[1..].iter().map(|g| g.1).filter(|&at| !w.contains(touched[at as usize])).collect();
+            let mut out: Vec<(u32, Vec<Dart>)> = Vec::new();
+            if others.is_empty() {
+                return out;
+            }
+            let mut reached: FxHashSet<Dart> = w.collect(map, first, Orbit::Vertex).iter().copied().collect();
+            for at in others {
+                let t = touched[at as usize];
+                if !reached.contains(&t) {
+                    let orbit = w.collect(map, t, Orbit::Vertex);
+                    reached.extend(orbit.iter().copied());
+                    out.push((at, orbit.to_vec()));
                 }
             }
-        });
+            out
+        };
+        let mut apart: Vec<(u32, Vec<Dart>)> = if groups.len() < 64 {
+            let mut w = OrbitWalker::new();
+            groups.iter().flat_map(|g| split_off(&mut w, g)).collect()
+        } else {
+            groups.par_iter().map_init(OrbitWalker::new, |w, g| split_off(w, g)).flatten_iter().collect()
+        };
+        apart.sort_unstable_by_key(|(at, _)| *at);
+        for (_, orbit) in apart {
+            let fresh = self.add_vertex(self.position(self.vertex_of(orbit[0])));
+            for x in orbit {
+                self.vertex[x.idx()] = fresh;
+            }
+        }
     }
 
     fn not_sewable(i: usize, d1: Dart, d2: Dart, why: &'static str) -> MapError {
