@@ -4,7 +4,7 @@
 //! original corner of its cell and runs along one of the cell's edges).
 
 use super::octree::{OctCell, RootBox};
-use crate::cmap::{CMap3, Dart, Mark, Orbit, OrbitWalker};
+use crate::cmap::{CMap3, Dart, Orbit, OrbitWalker};
 use crate::geom::Aabb;
 
 /// Tolerance for "on the corner lattice", relative to the cell size.
@@ -32,16 +32,8 @@ pub(crate) fn cell_of(root: RootBox, b: &Aabb) -> OctCell {
     OctCell { level, ijk: [0, 1, 2].map(|k| ((b.lo[k] - root.lo[k]) / s[k]).round().max(0.0) as u32) }
 }
 
-/// Flags with `mark` the darts of a volume (collected, whose box is `b`) that start at a
-/// corner of the box and run along a box edge (their end shares two coordinates).
-pub(crate) fn flag_box_corners_of(map: &mut CMap3, mark: Mark, volume: &[Dart], b: &Aabb) {
-    let corners: Vec<Dart> = box_corner_darts(map, volume, b).collect();
-    for x in corners {
-        map.mark(x, mark);
-    }
-}
-
-/// The darts of `volume` (whose box is `b`) that [`flag_box_corners_of`] flags.
+/// The darts of `volume` (whose box is `b`) that start at a corner of the box and run
+/// along a box edge (their end shares two coordinates): the flags of the box patterns.
 pub(crate) fn box_corner_darts<'a>(map: &'a CMap3, volume: &'a [Dart], b: &'a Aabb) -> impl Iterator<Item = Dart> + 'a {
     let e = b.extent();
     volume.iter().copied().filter(move |&x| {

@@ -15,6 +15,7 @@ mod mc_patterns;
 mod octree;
 mod recombine;
 mod recombine_repair;
+mod refine;
 mod subdivide;
 mod tet2hex;
 mod tetrahedralize;

@@ -7,15 +7,14 @@ use std::time::Instant;
 
 use rayon::prelude::*;
 
-use super::box_cells::{cell_of, flag_box_corners_of, is_corner, volume_box, walker_chunk};
+use super::box_cells::{cell_of, volume_box, walker_chunk};
 use super::generated_patterns::{GeneratedKind, given_or_generated};
 use super::octree::{OctCell, Octree, RootBox, outside_among};
+use super::refine::refine;
 use crate::build::{BuildOptions, IndexedMesh, build_map};
 use crate::cmap::{CMap3, Dart, MapError, Mark, Orbit, OrbitWalker};
-use crate::geom::{Aabb, TriangleBvh};
+use crate::geom::TriangleBvh;
 use crate::pattern::PatternSet;
-use crate::replace::replace_cells;
-use crate::signature::Flags;
 use rustc_hash::FxHashMap;
 
 /// The level-0 cells of [`subdivide`].
@@ -295,85 +294,6 @@ fn add_to_plan(map: &mut CMap3, w: &mut OrbitWalker, in_plan: Mark, cell: (i32, 
         map.mark(x, in_plan);
     }
     plan.push(cell);
-}
-
-/// One refinement step of Algorithm 5 on the volumes of `cells`: split their whole
-/// edges, flag the darts at their corners, query-replace their faces, then themselves.
-/// Returns one dart of each child, and the cells' boxes.
-fn refine(
-    map: &mut CMap3,
-    set: &PatternSet,
-    cells: &[Dart],
-    child_level: i32,
-    use_signatures: bool,
-    r: &mut SubdivideReport,
-) -> Result<(Vec<Dart>, Vec<Aabb>), MapError> {
-    let t = Instant::now();
-    let mut w = OrbitWalker::new();
-    let mut e = OrbitWalker::new();
-    // Each cell's darts (old_darts[ends[i - 1]..ends[i]]) and box.
-    let mut old_darts: Vec<Dart> = Vec::new();
-    let mut ends = Vec::with_capacity(cells.len());
-    for &d in cells {
-        old_darts.extend_from_slice(w.collect(map, d, Orbit::Volume));
-        ends.push(old_darts.len());
-    }
-    let darts_of = |i: usize| (if i == 0 { 0 } else { ends[i - 1] })..ends[i];
-    let boxes: Vec<Aabb> =
-        (0..cells.len()).map(|i| Aabb::of(old_darts[darts_of(i)].iter().map(|&x| map.point(x)))).collect();
-    // Whole edges: both ends at corners of the cell (split ones end at a midpoint).
-    let seen = map.reserve_mark()?;
-    let mut edges = Vec::new();
-    for (i, b) in boxes.iter().enumerate() {
-        for &x in &old_darts[darts_of(i)] {
-            if !map.is_marked(x, seen) && is_corner(b, map.point(x)) && is_corner(b, map.point(map.next(x))) {
-                edges.push((x, midpoint(map.point(x), map.point(map.next(x)))));
-                for &y in e.collect(map, x, Orbit::Edge) {
-                    map.mark(y, seen);
-                }
-            }
-        }
-    }
-    map.free_mark(seen);
-    for (x, p) in edges {
-        map.insert_vertex_in_edge(x, p);
-    }
-    // Flags on corner darts; each face listed once; the cell's darts take the
-    // children's level, which the darts the replacements create copy.
-    let flag = map.reserve_mark()?;
-    let seen = map.reserve_mark()?;
-    let mut faces = Vec::new();
-    let mut volume = Vec::new();
-    for (&d, b) in cells.iter().zip(&boxes) {
-        volume.clear();
-        volume.extend_from_slice(w.collect(map, d, Orbit::Volume));
-        flag_box_corners_of(map, flag, &volume, b);
-        for &x in &volume {
-            map.set_label_of(x, child_level);
-        }
-        for &x in &volume {
-            if !map.is_marked(x, seen) {
-                faces.push(x);
-                for &f in e.collect(map, x, Orbit::Face) {
-                    map.mark(f, seen);
-                }
-            }
-        }
-    }
-    map.free_mark(seen);
-    r.phases.split_edges += t.elapsed().as_secs_f64();
-    let t = Instant::now();
-    let rep = replace_cells(map, set, Flags::Mark(flag), &faces, cells, use_signatures);
-    map.free_mark(flag);
-    r.faces_replaced += rep.faces_replaced;
-    r.volumes_replaced += rep.volumes_replaced;
-    r.phases.lookup += rep.query_seconds;
-    r.phases.apply += t.elapsed().as_secs_f64() - rep.query_seconds;
-    Ok((rep.created_volumes.into_iter().map(|(d, _)| d).collect(), boxes))
-}
-
-fn midpoint(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [0, 1, 2].map(|k| 0.5 * (a[k] + b[k]))
 }
 
 /// A volume made by the last refinement: one dart, its octree cell, and whether the

@@ -355,13 +355,13 @@ impl CMap3 {
 
     /// Number of darts (edges) of the half-face of `d`.
     pub fn face_degree(&self, d: Dart) -> usize {
-        let mut n = 1;
-        let mut x = self.next(d);
-        while x != d {
-            n += 1;
-            x = self.next(x);
-        }
-        n
+        self.face_cycle(d).count()
+    }
+
+    /// The darts of the half-face of `d` in β1 order, `d` first (its β1 cycle, without
+    /// a visited set).
+    pub fn face_cycle(&self, d: Dart) -> impl Iterator<Item = Dart> + '_ {
+        std::iter::successors(Some(d), move |&x| Some(self.next(x)).filter(|&n| n != d))
     }
 
     /// The darts of the orbit of `d` (allocates; loops should reuse an [`OrbitWalker`]).

@@ -4,6 +4,7 @@ use super::dart::Dart;
 use super::error::MapError;
 use super::orbit::Orbit;
 use super::storage::CMap3;
+use smallvec::SmallVec;
 
 impl CMap3 {
     /// Inserts a new vertex at `p` in the edge of `d`. Every dart around the edge (across
@@ -23,11 +24,14 @@ impl CMap3 {
     /// ```
     pub fn insert_vertex_in_edge(&mut self, d: Dart, p: [f64; 3]) -> Dart {
         let v = self.add_vertex(p);
-        let edge: Vec<Dart> = self.with_scratch(|m, w| w.collect(m, d, Orbit::Edge).to_vec());
-        let new: Vec<Dart> = edge.iter().map(|_| self.create_dart(v)).collect();
+        // Edges of volume meshes have a few darts: kept inline, no allocation per edge.
+        let edge: SmallVec<[Dart; 16]> =
+            self.with_scratch(|m, w| w.collect(m, d, Orbit::Edge).iter().copied().collect());
+        let new: SmallVec<[Dart; 16]> = edge.iter().map(|_| self.create_dart(v)).collect();
         let new_of = |x: Dart| new[edge.iter().position(|&e| e == x).expect("edge orbit is closed under β2, β3")];
         // Read the old β2/β3 partners before rewiring anything.
-        let partners: Vec<[Option<Dart>; 2]> = edge.iter().map(|&x| [self.beta(x, 2), self.beta(x, 3)]).collect();
+        let partners: SmallVec<[[Option<Dart>; 2]; 16]> =
+            edge.iter().map(|&x| [self.beta(x, 2), self.beta(x, 3)]).collect();
         for (k, &x) in edge.iter().enumerate() {
             let n = new[k];
             self.set_label_of(n, self.label_of(x));

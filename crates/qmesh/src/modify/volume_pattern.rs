@@ -7,15 +7,19 @@
 use rustc_hash::FxHashMap;
 
 use super::plan::{Link, NewDart, Operation, Plan, VertexOf};
-use crate::cmap::{CMap3, Dart};
+use crate::cmap::{CMap3, Dart, Orbit};
 use crate::pattern::Pattern;
-use crate::signature::{Flags, Surface, word_from};
+use crate::signature::{Flags, Surface, VolumeWord, word_from};
 
 /// A v-pattern ready to replace volumes: its plan and its boundary word.
 #[derive(Clone, Debug)]
 pub struct VolumePattern {
     pub plan: Plan,
     word: Vec<u32>,
+    /// For each volume of the pattern with interior darts, the index among the new
+    /// darts of its first one: one dart per volume a replacement creates, without
+    /// walking the result.
+    pub volume_starts: Vec<u32>,
 }
 
 impl VolumePattern {
@@ -51,16 +55,31 @@ impl VolumePattern {
             .collect::<Option<Vec<_>>>()?;
         let plan =
             Plan { op: Operation::Replace, deleted: Vec::new(), new_darts, relink: Vec::new(), created: weights? };
-        Some(VolumePattern { plan, word: pw.word })
+        Some(VolumePattern { plan, word: pw.word, volume_starts: first_of_each_volume(pm, &interior) })
     }
 
     /// Inserts the pattern's interior into the volume of `target`, whose traversal
     /// from `target` must give the pattern boundary's word. Returns the darts added.
     pub fn replace(&self, map: &mut CMap3, target: Dart, flags: Flags) -> Option<Vec<Dart>> {
-        let tw = word_from(map, Surface::Cell, flags, target, None)?;
-        if tw.word != self.word {
-            return None;
-        }
-        Some(super::execute(map, &self.plan, &tw.darts).1)
+        self.replace_traversed(map, &word_from(map, Surface::Cell, flags, target, None)?)
     }
+
+    /// [`replace`](Self::replace) given the traversal of the volume from the target
+    /// dart (computed beforehand, on any thread).
+    pub fn replace_traversed(&self, map: &mut CMap3, traversal: &VolumeWord) -> Option<Vec<Dart>> {
+        (traversal.word == self.word).then(|| super::execute(map, &self.plan, &traversal.darts).1)
+    }
+}
+
+/// The positions in `darts` of the first dart of each volume of `map` they meet.
+fn first_of_each_volume(map: &CMap3, darts: &[Dart]) -> Vec<u32> {
+    let mut seen = rustc_hash::FxHashSet::default();
+    let mut firsts = Vec::new();
+    for (k, &d) in darts.iter().enumerate() {
+        if !seen.contains(&d) {
+            seen.extend(map.orbit(d, Orbit::Volume));
+            firsts.push(k as u32);
+        }
+    }
+    firsts
 }

@@ -6,7 +6,7 @@ use std::time::Instant;
 
 use super::face::align_face;
 use super::lookup_memo;
-use crate::cmap::{BitSet, CMap3, Dart, MapError, Orbit, OrbitWalker};
+use crate::cmap::{CMap3, Dart, MapError, Orbit};
 use crate::modify::{FacePattern, VolumePattern};
 use crate::pattern::{FlagRule, PatternKind, PatternSet, flag_corners_on};
 use rayon::prelude::*;
@@ -14,7 +14,7 @@ use rustc_hash::FxHashMap;
 
 use crate::geom::centroid;
 use crate::signature::{
-    Flags, Signature, Surface, face_signature, match_direct, start_with_signature, volume_signature_from,
+    Flags, Signature, Surface, face_signature, match_direct, start_with_signature, volume_signature_from, word_from,
 };
 
 /// Cells looked up in parallel before their replacements are applied (bounds the
@@ -182,22 +182,25 @@ pub fn replace_cells(
     if has(PatternKind::Volume) {
         // Each v-pattern's plan is made once, when it first matches.
         let mut plans: Vec<Option<Option<VolumePattern>>> = vec![None; set.patterns.len()];
-        let mut children = ChildRecorder::default();
         for chunk in volumes.chunks(LOOKUP_CHUNK) {
             let t = Instant::now();
-            let found = on_cores(chunk, |d| find_volume(map, set, flags, d, use_signatures));
+            // The match and the traversal from its start, which the replacement follows.
+            let found = on_cores(chunk, |d| {
+                let (i, start) = find_volume(map, set, flags, d, use_signatures)?;
+                Some((i, word_from(map, Surface::Cell, flags, start, None)?))
+            });
             r.query_seconds += t.elapsed().as_secs_f64();
             let t = Instant::now();
             for (&d, found) in chunk.iter().zip(found) {
-                let replaced = found.and_then(|(i, start)| {
+                let replaced = found.and_then(|(i, traversal)| {
                     let plan = plans[i].get_or_insert_with(|| VolumePattern::new(&set.patterns[i])).as_ref()?;
-                    plan.replace(map, start, flags).map(|c| (i, c))
+                    plan.replace_traversed(map, &traversal).map(|c| (i, plan, c))
                 });
                 match replaced {
-                    Some((i, created)) => {
+                    Some((i, plan, created)) => {
                         r.matches[i] += 1;
                         r.volumes_replaced += 1;
-                        children.record(map, &created, i as u32, &mut r.created_volumes);
+                        r.created_volumes.extend(plan.volume_starts.iter().map(|&k| (created[k as usize], i as u32)));
                     }
                     None => {
                         r.unmatched_volumes += 1;
@@ -218,34 +221,6 @@ pub fn replace_cells(
 /// where handing them out costs more than looking them up).
 fn on_cores<T: Send>(cells: &[Dart], f: impl Fn(Dart) -> T + Sync) -> Vec<T> {
     if cells.len() < 64 { cells.iter().map(|&d| f(d)).collect() } else { cells.par_iter().map(|&d| f(d)).collect() }
-}
-
-/// Finds one dart per volume among the `created` darts of a replacement (every new
-/// volume has an inner face, hence created darts), with a walker and a visited set
-/// kept from one replacement to the next.
-#[derive(Default)]
-struct ChildRecorder {
-    walker: OrbitWalker,
-    seen: BitSet,
-    visited: Vec<Dart>,
-}
-
-impl ChildRecorder {
-    fn record(&mut self, map: &CMap3, created: &[Dart], pattern: u32, out: &mut Vec<(Dart, u32)>) {
-        self.seen.grow(map.dart_capacity());
-        for &c in created {
-            if !self.seen.get(c.idx()) {
-                for &x in self.walker.collect(map, c, Orbit::Volume) {
-                    self.seen.insert(x.idx());
-                    self.visited.push(x);
-                }
-                out.push((c, pattern));
-            }
-        }
-        for d in self.visited.drain(..) {
-            self.seen.remove(d.idx());
-        }
-    }
 }
 
 /// The f-pattern matching the face of `d` (either side when it is 3-sewn) and the

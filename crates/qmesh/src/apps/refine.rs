@@ -1,0 +1,154 @@
+//! One refinement step of the query-replace subdivision (2022 Algorithm 5, §7.1): the
+//! cells' whole edges are split in two, the darts at their corners flagged, then their
+//! faces and volumes query-replaced. What each cell needs is read on all cores; the
+//! map is changed on one thread in the cells' order, so the map is the same whatever
+//! the number of threads.
+
+use std::time::Instant;
+
+use rayon::prelude::*;
+use rustc_hash::FxHashSet;
+use smallvec::SmallVec;
+
+use super::box_cells::{box_corner_darts, is_corner, walker_chunk};
+use super::subdivide::SubdivideReport;
+use crate::cmap::{BitSet, CMap3, Dart, MapError, Orbit, OrbitWalker};
+use crate::geom::Aabb;
+use crate::pattern::PatternSet;
+use crate::replace::replace_cells;
+use crate::signature::Flags;
+
+/// What refining a cell needs, read before its edges are split: its darts, its box,
+/// its whole edges (both ends at corners of the box; split ones end at a midpoint), its
+/// darts at a box corner along a box edge (the flags of the patterns, the same darts
+/// once the edges are split) and one dart of each of its half-faces (the first in the
+/// order of `darts`). Edges and faces come with the smallest dart of their orbit, which
+/// names them (edge splits add darts to orbits but never make one smaller).
+struct Cell {
+    darts: Vec<Dart>,
+    bbox: Aabb,
+    whole_edges: SmallVec<[(Dart, Dart); 24]>,
+    corners: SmallVec<[Dart; 24]>,
+    faces: SmallVec<[(Dart, Dart); 8]>,
+}
+
+/// What reading one cell uses, kept from cell to cell.
+#[derive(Default)]
+struct Scratch {
+    walker: OrbitWalker,
+    on_listed_face: FxHashSet<Dart>,
+}
+
+/// Refines the volumes of `cells` into their children of level `child_level`: splits
+/// their whole edges, flags their corner darts, query-replaces their faces, then
+/// themselves. Returns one dart of each child and the cells' boxes.
+pub(super) fn refine(
+    map: &mut CMap3,
+    set: &PatternSet,
+    cells: &[Dart],
+    child_level: i32,
+    use_signatures: bool,
+    r: &mut SubdivideReport,
+) -> Result<(Vec<Dart>, Vec<Aabb>), MapError> {
+    let t = Instant::now();
+    let before = on_cores(cells, |w, d| read_cell(map, w, d));
+    // The cell's darts take the children's level; the darts the edge splits and the
+    // replacements create copy it.
+    let flag = map.reserve_mark()?;
+    for c in &before {
+        c.darts.iter().for_each(|&x| map.set_label_of(x, child_level));
+        c.corners.iter().for_each(|&x| map.mark(x, flag));
+    }
+    // Each edge and face once, by its name, in the cells' order.
+    let mut named = BitSet::with_len(map.dart_capacity());
+    let edges: Vec<(Dart, [f64; 3])> = before
+        .iter()
+        .flat_map(|c| &c.whole_edges)
+        .filter(|&&(_, edge)| named.insert(edge.idx()))
+        .map(|&(x, _)| (x, midpoint(map.point(x), map.point(map.next(x)))))
+        .collect();
+    named.clear();
+    let faces: Vec<Dart> =
+        before.iter().flat_map(|c| &c.faces).filter(|&&(_, face)| named.insert(face.idx())).map(|&(x, _)| x).collect();
+    for (x, p) in edges {
+        map.insert_vertex_in_edge(x, p);
+    }
+    r.phases.split_edges += t.elapsed().as_secs_f64();
+    let t = Instant::now();
+    let rep = replace_cells(map, set, Flags::Mark(flag), &faces, cells, use_signatures);
+    map.free_mark(flag);
+    r.faces_replaced += rep.faces_replaced;
+    r.volumes_replaced += rep.volumes_replaced;
+    r.phases.lookup += rep.query_seconds;
+    r.phases.apply += t.elapsed().as_secs_f64() - rep.query_seconds;
+    let children = rep.created_volumes.into_iter().map(|(d, _)| d).collect();
+    Ok((children, before.into_iter().map(|c| c.bbox).collect()))
+}
+
+fn read_cell(map: &CMap3, s: &mut Scratch, d: Dart) -> Cell {
+    let darts = s.walker.collect(map, d, Orbit::Volume).to_vec();
+    let bbox = Aabb::of(darts.iter().map(|&x| map.point(x)));
+    let whole_edges = darts
+        .iter()
+        .filter(|&&x| is_corner(&bbox, map.point(x)) && is_corner(&bbox, map.point(map.next(x))))
+        .map(|&x| (x, edge_name(map, x)))
+        .collect();
+    let corners = box_corner_darts(map, &darts, &bbox).collect();
+    let on_listed_face = &mut s.on_listed_face;
+    on_listed_face.clear();
+    let mut faces = SmallVec::new();
+    for &x in &darts {
+        if !on_listed_face.contains(&x) {
+            let mut name = x;
+            for y in map.face_cycle(x) {
+                on_listed_face.insert(y);
+                name = name.min(y).min(map.beta(y, 3).unwrap_or(y));
+            }
+            faces.push((x, name));
+        }
+    }
+    Cell { darts, bbox, whole_edges, corners, faces }
+}
+
+/// The smallest dart of the edge orbit of `x` (β2 and β3 alternate around an edge; on
+/// the boundary the walk stops at a 3-free dart and goes the other way from `x`).
+fn edge_name(map: &CMap3, x: Dart) -> Dart {
+    let mut name = x;
+    let mut d = x;
+    loop {
+        let a = map.beta(d, 2).expect("volume darts are 2-sewn");
+        name = name.min(a);
+        match map.beta(a, 3) {
+            Some(b) if b == x => return name,
+            Some(b) => {
+                name = name.min(b);
+                d = b;
+            }
+            None => break,
+        }
+    }
+    let mut d = x;
+    while let Some(b) = map.beta(d, 3) {
+        let a = map.beta(b, 2).expect("volume darts are 2-sewn");
+        name = name.min(b).min(a);
+        d = a;
+    }
+    name
+}
+
+/// `f` of every cell, in order, on all cores (each thread's chunk of cells shares a
+/// [`Scratch`]).
+fn on_cores<T: Send>(cells: &[Dart], f: impl Fn(&mut Scratch, Dart) -> T + Sync) -> Vec<T> {
+    let f = &f;
+    cells
+        .par_chunks(walker_chunk(cells.len()))
+        .flat_map_iter(|c| {
+            let mut s = Scratch::default();
+            c.iter().map(move |&d| f(&mut s, d))
+        })
+        .collect()
+}
+
+fn midpoint(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [0, 1, 2].map(|k| 0.5 * (a[k] + b[k]))
+}
