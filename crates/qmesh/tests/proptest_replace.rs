@@ -10,8 +10,9 @@ use qmesh::apps::{GeneratedKind, McFlags, generated_pattern_set, marching_cubes,
 use qmesh::build::{BuildOptions, build_volume_map};
 use qmesh::cmap::{CMap3, Dart, Orbit};
 use qmesh::generate::{hex_grid, tet_grid};
+use qmesh::modify::{FacePattern, VolumePattern};
 use qmesh::pattern::{FlagRule, PatternSet};
-use qmesh::replace::replace_cells;
+use qmesh::replace::{find_face, find_volume, replace_cells};
 use qmesh::signature::Flags;
 
 fn sets() -> &'static [PatternSet; 3] {
@@ -40,14 +41,59 @@ fn random_map(tets: bool, n: [usize; 3], splits: &[u16], removals: &[u16]) -> (C
             m.remove_face(d).expect("an inner face can be removed");
         }
     }
+    split_edges_at(&mut m, splits);
+    assert!(m.is_valid().is_empty());
+    (m, flag)
+}
+
+/// Splits, for each of `splits`, the edge of that index (modulo the count) in its middle.
+fn split_edges_at(m: &mut CMap3, splits: &[u16]) {
     for &s in splits {
         let edges: Vec<Dart> = m.cells(Orbit::Edge).collect();
         let d = edges[s as usize % edges.len()];
         let (p, q) = (m.point(d), m.point(m.next(d)));
         m.insert_vertex_in_edge(d, [0, 1, 2].map(|k| 0.5 * (p[k] + q[k])));
     }
-    assert!(m.is_valid().is_empty());
-    (m, flag)
+}
+
+/// The f and v passes one cell at a time, each looked up after the previous
+/// replacements (what `replace_cells` must equal, dart for dart).
+fn replace_one_by_one(m: &mut CMap3, set: &PatternSet, flags: Flags, faces: &[Dart], volumes: &[Dart]) {
+    for &d in faces {
+        if let Some((i, aligned)) = find_face(m, set, flags, d, true)
+            && let Some(p) = FacePattern::new(&set.patterns[i])
+        {
+            p.replace(m, &aligned);
+        }
+    }
+    for &d in volumes {
+        if let Some((i, start)) = find_volume(m, set, flags, d, true)
+            && let Some(p) = VolumePattern::new(&set.patterns[i])
+        {
+            p.replace(m, start, flags);
+        }
+    }
+}
+
+/// Every dart slot (liveness, betas, vertex id, label) and every position of two maps.
+fn same_storage(a: &CMap3, b: &CMap3) -> Result<(), String> {
+    if a.dart_capacity() != b.dart_capacity() || a.positions() != b.positions() {
+        return Err(format!(
+            "{} / {} dart slots, {} / {} vertices",
+            a.dart_capacity(),
+            b.dart_capacity(),
+            a.nb_vertex_ids(),
+            b.nb_vertex_ids()
+        ));
+    }
+    for raw in 1..a.dart_capacity() as u32 {
+        let d = Dart::from_raw(raw).expect("non-zero");
+        let slot = |m: &CMap3| (m.is_live(d), m.is_live(d).then(|| (m.betas_raw(raw), m.vertex_of(d), m.label_of(d))));
+        if slot(a) != slot(b) {
+            return Err(format!("dart {raw}: {:?} / {:?}", slot(a), slot(b)));
+        }
+    }
+    Ok(())
 }
 
 /// Every live dart belongs to some volume, and compaction changes no count.
@@ -77,12 +123,7 @@ proptest! {
         if split_all {
             m.split_all_edges(2).expect("split");
         }
-        for &s in &splits {
-            let edges: Vec<Dart> = m.cells(Orbit::Edge).collect();
-            let d = edges[s as usize % edges.len()];
-            let (p, q) = (m.point(d), m.point(m.next(d)));
-            m.insert_vertex_in_edge(d, [0, 1, 2].map(|k| 0.5 * (p[k] + q[k])));
-        }
+        split_edges_at(&mut m, &splits);
         let before = m.count_cells();
         let set = &sets()[usize::from(tets)];
         let faces: Vec<Dart> = m.cells(Orbit::Face).collect();
@@ -97,6 +138,42 @@ proptest! {
             prop_assert_eq!(r.volumes_replaced, before.volumes, "every cell matches");
         }
         assert_no_leak(&mut m);
+    }
+
+    /// The batched replacements (resolved on all cores, stored in order) give the map
+    /// of one replacement after another, dart for dart, freed slots reused included.
+    #[test]
+    fn batched_replacements_equal_one_by_one(
+        tets in any::<bool>(),
+        n in prop::array::uniform3(1usize..4),
+        splits in prop::collection::vec(any::<u16>(), 0..6),
+        removals in prop::collection::vec(any::<u16>(), 0..3),
+        labelled in any::<bool>(),
+    ) {
+        let (mut m, flag) = random_map(tets, n, &[], &removals);
+        m.split_all_edges(2).expect("split");
+        split_edges_at(&mut m, &splits);
+        if labelled {
+            m.enable_labels();
+            for (k, v) in m.cells(Orbit::Volume).collect::<Vec<_>>().into_iter().enumerate() {
+                for x in m.orbit(v, Orbit::Volume) {
+                    m.set_label_of(x, k as i32);
+                }
+            }
+        }
+        let set = &sets()[usize::from(tets)];
+        let faces: Vec<Dart> = m.cells(Orbit::Face).collect();
+        let volumes: Vec<Dart> = m.cells(Orbit::Volume).collect();
+        let mut reference = m.clone();
+        replace_one_by_one(&mut reference, set, Flags::Mark(flag), &faces, &volumes);
+        let r = replace_cells(&mut m, set, Flags::Mark(flag), &faces, &volumes, true);
+        if splits.is_empty() && removals.is_empty() {
+            prop_assert_eq!(r.volumes_replaced, volumes.len(), "every cell matches");
+        }
+        prop_assert!(m.is_valid().is_empty());
+        if let Err(e) = same_storage(&m, &reference) {
+            prop_assert!(false, "batched and one-by-one maps differ: {}", e);
+        }
     }
 
     #[test]

@@ -5,6 +5,7 @@
 
 use rustc_hash::FxHashMap;
 
+use super::Job;
 use super::plan::{Link, NewDart, Operation, Plan, VertexOf};
 use crate::cmap::{CMap3, Dart};
 use crate::pattern::Pattern;
@@ -78,12 +79,22 @@ impl FacePattern {
     /// correspond to the pattern's boundary darts `p.cycle[i]`, and its mirror into the
     /// half-face across when the face is 3-sewn. Returns the number of darts added.
     pub fn replace(&self, map: &mut CMap3, aligned: &[Dart]) -> usize {
+        let job = self.job(map, aligned.to_vec());
+        super::execute(map, job.plan, &job.matched).0.darts_added
+    }
+
+    /// The replacement of [`replace`](Self::replace) as a [`Job`], for
+    /// [`DisjointExecutor`](super::DisjointExecutor).
+    pub fn job(&self, map: &CMap3, aligned: Vec<Dart>) -> Job<'_> {
         debug_assert_eq!(aligned.len(), self.k);
         if map.is_free(aligned[0], 3) {
-            return super::execute(map, &self.one_side, aligned).0.darts_added;
+            return Job { plan: &self.one_side, matched: aligned };
         }
-        let mut both = aligned.to_vec();
-        both.extend(aligned.iter().map(|&t| map.beta(t, 3).expect("a 3-sewn face is 3-sewn everywhere")));
-        super::execute(map, &self.two_sides, &both).0.darts_added
+        let mut both = aligned;
+        both.extend_from_within(..);
+        for t in &mut both[self.k..] {
+            *t = map.beta(*t, 3).expect("a 3-sewn face is 3-sewn everywhere");
+        }
+        Job { plan: &self.two_sides, matched: both }
     }
 }

@@ -6,6 +6,7 @@
 
 use rustc_hash::FxHashMap;
 
+use super::Job;
 use super::plan::{Link, NewDart, Operation, Plan, VertexOf};
 use crate::cmap::{CMap3, Dart, Orbit};
 use crate::pattern::Pattern;
@@ -68,6 +69,12 @@ impl VolumePattern {
     /// dart (computed beforehand, on any thread).
     pub fn replace_traversed(&self, map: &mut CMap3, traversal: &VolumeWord) -> Option<Vec<Dart>> {
         (traversal.word == self.word).then(|| super::execute(map, &self.plan, &traversal.darts).1)
+    }
+
+    /// The replacement of [`replace_traversed`](Self::replace_traversed) as a [`Job`],
+    /// for [`DisjointExecutor`](super::DisjointExecutor); None when the words differ.
+    pub fn job(&self, traversal: VolumeWord) -> Option<Job<'_>> {
+        (traversal.word == self.word).then_some(Job { plan: &self.plan, matched: traversal.darts })
     }
 }
 

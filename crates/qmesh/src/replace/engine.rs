@@ -7,7 +7,7 @@ use std::time::Instant;
 use super::face::align_face;
 use super::lookup_memo;
 use crate::cmap::{CMap3, Dart, MapError, Orbit};
-use crate::modify::{FacePattern, VolumePattern};
+use crate::modify::{DisjointExecutor, FacePattern, VolumePattern};
 use crate::pattern::{FlagRule, PatternKind, PatternSet, flag_corners_on};
 use rayon::prelude::*;
 use rustc_hash::FxHashMap;
@@ -155,17 +155,23 @@ pub fn replace_cells(
     let mut coverage = Coverage::default();
     let has = |k: PatternKind| set.count(k) > 0;
     if has(PatternKind::Face) {
+        // Each pattern's plans are made once, when it first matches.
         let mut plans: Vec<Option<Option<FacePattern>>> = vec![None; set.patterns.len()];
+        let mut executor = DisjointExecutor::default();
         for chunk in faces.chunks(LOOKUP_CHUNK) {
             let t = Instant::now();
             let found = on_cores(chunk, |d| find_face(map, set, flags, d, use_signatures));
             r.query_seconds += t.elapsed().as_secs_f64();
             let t = Instant::now();
+            for &(i, _) in found.iter().flatten() {
+                plans[i].get_or_insert_with(|| FacePattern::new(&set.patterns[i]));
+            }
+            let mut jobs = Vec::with_capacity(chunk.len());
             for (&d, found) in chunk.iter().zip(found) {
                 match found {
                     Some((i, aligned)) => {
-                        if let Some(plan) = plans[i].get_or_insert_with(|| FacePattern::new(&set.patterns[i])) {
-                            plan.replace(map, &aligned);
+                        if let Some(Some(plan)) = &plans[i] {
+                            jobs.push(plan.job(map, aligned));
                         }
                         r.matches[i] += 1;
                         r.faces_replaced += 1;
@@ -176,12 +182,13 @@ pub fn replace_cells(
                     }
                 }
             }
+            executor.execute(map, &jobs);
             r.replace_seconds += t.elapsed().as_secs_f64();
         }
     }
     if has(PatternKind::Volume) {
-        // Each v-pattern's plan is made once, when it first matches.
         let mut plans: Vec<Option<Option<VolumePattern>>> = vec![None; set.patterns.len()];
+        let mut executor = DisjointExecutor::default();
         for chunk in volumes.chunks(LOOKUP_CHUNK) {
             let t = Instant::now();
             // The match and the traversal from its start, which the replacement follows.
@@ -191,16 +198,17 @@ pub fn replace_cells(
             });
             r.query_seconds += t.elapsed().as_secs_f64();
             let t = Instant::now();
+            for &(i, _) in found.iter().flatten() {
+                plans[i].get_or_insert_with(|| VolumePattern::new(&set.patterns[i]));
+            }
+            let (mut jobs, mut used) = (Vec::with_capacity(chunk.len()), Vec::with_capacity(chunk.len()));
             for (&d, found) in chunk.iter().zip(found) {
-                let replaced = found.and_then(|(i, traversal)| {
-                    let plan = plans[i].get_or_insert_with(|| VolumePattern::new(&set.patterns[i])).as_ref()?;
-                    plan.replace_traversed(map, &traversal).map(|c| (i, plan, c))
-                });
-                match replaced {
-                    Some((i, plan, created)) => {
+                match found.and_then(|(i, traversal)| Some((i, plans[i].as_ref()?.as_ref()?.job(traversal)?))) {
+                    Some((i, job)) => {
                         r.matches[i] += 1;
                         r.volumes_replaced += 1;
-                        r.created_volumes.extend(plan.volume_starts.iter().map(|&k| (created[k as usize], i as u32)));
+                        jobs.push(job);
+                        used.push(i);
                     }
                     None => {
                         r.unmatched_volumes += 1;
@@ -209,6 +217,13 @@ pub fn replace_cells(
                         }
                     }
                 }
+            }
+            let created = executor.execute(map, &jobs);
+            let mut first = 0;
+            for (&i, job) in used.iter().zip(&jobs) {
+                let starts = &plans[i].as_ref().and_then(Option::as_ref).expect("a job has a plan").volume_starts;
+                r.created_volumes.extend(starts.iter().map(|&k| (created[first + k as usize], i as u32)));
+                first += job.plan.new_darts.len();
             }
             r.replace_seconds += t.elapsed().as_secs_f64();
         }
