@@ -40,7 +40,9 @@ def main():
             res = sh(
                 sys.executable, MEASURE, str(a.runs),
                 "qmesh", "--", Q, "recombine", tets, "-o", out, "--json", "--force", "---",
-                "hxt", "--", HXT, tets, "--quiet", "--threads", "2",
+                # HXT writes its hexahedra too: both runs do the same work.
+                "hxt", "--", HXT, tets, "--out", os.path.join(a.out, f"{name}_{choice}_hxt.mesh"),
+                "--quiet", "--threads", "2",
             )
             q, h = [json.loads(line) for line in res.splitlines() if line.strip()]
             qr = q["output"]["recombine"]

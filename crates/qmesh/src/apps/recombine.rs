@@ -129,15 +129,16 @@ pub fn recombine(
     let splits = HexSplits::get();
     let catalogue_seconds = t.elapsed().as_secs_f64();
     let book = rule_book()?;
+    let rules_seconds = t.elapsed().as_secs_f64() - catalogue_seconds;
+    let t = Instant::now();
     let volumes = VolumeIds::of(map);
     let mut report = RecombineReport {
         tets_in: volumes.first_dart.iter().filter(|&&d| classify_volume(map, d) == CellKind::Tet).count(),
         queries: book.targets.len(),
         catalogue_seconds,
-        rules_seconds: t.elapsed().as_secs_f64() - catalogue_seconds,
+        rules_seconds,
         ..Default::default()
     };
-    let t = Instant::now();
     let metric = Metric::HexQuality;
     let found = find_matches(
         map,

@@ -79,21 +79,43 @@ impl EdgeSignatures {
 impl Automorphisms {
     /// All automorphisms of the query `map` labelled by `labelling` with word `word`.
     pub fn of(map: &CMap3, labelling: &Labelling, word: &QueryWord) -> Automorphisms {
+        let start = labelling.darts[0];
+        let signature = EdgeSignatures::of(map, labelling);
+        let candidates = labelling.darts.iter().copied().filter(|&s| s != start && signature.same(s, start, map));
+        Self::from_candidates(map, labelling, word, candidates)
+    }
+
+    /// The automorphisms taking label 1 to the labels `starts`, which [`of`](Self::of)
+    /// found before ([`start_labels`](Self::start_labels)): for rule books computed
+    /// once and stored. A start from which the query does not match itself is skipped.
+    pub(crate) fn from_starts(map: &CMap3, labelling: &Labelling, word: &QueryWord, starts: &[u32]) -> Automorphisms {
+        let candidates = starts.iter().filter_map(|&l| labelling.darts.get(l as usize - 1).copied());
+        Self::from_candidates(map, labelling, word, candidates)
+    }
+
+    /// The image of label 1 under each automorphism other than the identity.
+    pub(crate) fn start_labels(&self) -> Vec<u32> {
+        self.others.iter().map(|p| p.image[0]).collect()
+    }
+
+    /// The automorphisms starting at those of `candidates` from which the query
+    /// matches itself (boundary conditions strict: free β3 onto free β3).
+    fn from_candidates(
+        map: &CMap3,
+        labelling: &Labelling,
+        word: &QueryWord,
+        candidates: impl Iterator<Item = Dart>,
+    ) -> Automorphisms {
         thread_local! {
             // One annotator per thread for every query compiled on it (rule books
             // compile hundreds of queries).
             static ANNOTATOR: std::cell::RefCell<Annotator> = std::cell::RefCell::new(Annotator::new(0));
         }
         let strict = word.with_all_conditions(Condition::Boundary);
-        let start = labelling.darts[0];
-        let signature = EdgeSignatures::of(map, labelling);
         let mut others = Vec::new();
         ANNOTATOR.with_borrow_mut(|a| {
             a.reserve(word.nb_darts());
-            for &s in &labelling.darts {
-                if s == start || !signature.same(s, start, map) {
-                    continue;
-                }
+            for s in candidates {
                 if !a.annotate(map, &strict, s, None) {
                     continue;
                 }

@@ -60,25 +60,51 @@ impl Query {
         if let Some(v) = map.is_valid().first() {
             return Err(QueryError::Invalid(v.to_string()));
         }
-        Self::from_valid_start(name, map, start, condition)
+        Self::compile(name, map, start, condition, None::<fn(&CMap3, &Labelling) -> [u32; 8]>, None)
     }
 
-    /// As [`from_start`](Self::from_start) without checking the map's validity: for the
-    /// maps qmesh builds itself (rule books of hundreds of queries), whose validity
-    /// their tests assert.
-    pub(crate) fn from_valid_start(
+    /// As [`from_start`](Self::from_start) without checking the map's validity, for the
+    /// maps qmesh builds itself (rule books of hundreds of queries, whose validity their
+    /// tests assert), with the hexahedral corners given by `corners(map, labelling)`
+    /// (see [`set_corners`](Self::set_corners)) instead of found from the geometry, and
+    /// the automorphisms, when `automorphism_starts` is given, computed only from those
+    /// labels (stored from an earlier search).
+    pub(crate) fn from_valid_start_with_corners(
         name: &str,
         map: CMap3,
         start: Dart,
         condition: impl FnMut(Dart) -> Condition,
+        corners: impl FnOnce(&CMap3, &Labelling) -> [u32; 8],
+        automorphism_starts: Option<&[u32]>,
+    ) -> Result<Query, QueryError> {
+        Self::compile(name, map, start, condition, Some(corners), automorphism_starts)
+    }
+
+    fn compile<F: FnOnce(&CMap3, &Labelling) -> [u32; 8]>(
+        name: &str,
+        map: CMap3,
+        start: Dart,
+        condition: impl FnMut(Dart) -> Condition,
+        given_corners: Option<F>,
+        automorphism_starts: Option<&[u32]>,
     ) -> Result<Query, QueryError> {
         if map.nb_darts() > super::MAX_QUERY_DARTS {
             return Err(QueryError::TooLarge(map.nb_darts()));
         }
         let labelling = Labelling::new(&map, start)?;
         let word = QueryWord::new(&map, &labelling, condition);
-        let automorphisms = Automorphisms::of(&map, &labelling, &word);
-        let corners = hex_corners(&map, &labelling);
+        let mut automorphisms = match automorphism_starts {
+            Some(starts) => Automorphisms::from_starts(&map, &labelling, &word, starts),
+            None => Automorphisms::of(&map, &labelling, &word),
+        };
+        let corners = match given_corners {
+            Some(f) => {
+                let c = f(&map, &labelling);
+                automorphisms.restrict_to_corner_symmetries(&map, &labelling, &c);
+                Some(c)
+            }
+            None => hex_corners(&map, &labelling),
+        };
         Ok(Query {
             name: name.to_string(),
             map,

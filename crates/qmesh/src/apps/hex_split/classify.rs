@@ -94,15 +94,19 @@ pub(super) fn from_enumeration() -> HexSplits {
                 class,
                 realization: realization.map(|p| vtk_corners(&p)),
                 query_start: None,
+                query_automorphisms: Vec::new(),
             });
             oriented.len() - 1
         });
         splits.push(HexSplit { tets: vtk_tets, diagonals, class, oriented: o });
     }
-    let starts: Vec<Option<u32>> =
-        oriented.par_iter().map(|o| o.realization.map(|p| rules::smallest_word_start(&o.tets, &p))).collect();
+    let starts: Vec<Option<(u32, Vec<u32>)>> =
+        oriented.par_iter().map(|o| o.realization.map(|p| rules::rule_start(&o.tets, &p))).collect();
     for (o, start) in oriented.iter_mut().zip(starts) {
-        o.query_start = start;
+        if let Some((start, automorphisms)) = start {
+            o.query_start = Some(start);
+            o.query_automorphisms = automorphisms;
+        }
     }
     // A class is realised as its first oriented class (the representative carried by
     // the identity, rounded as stored).

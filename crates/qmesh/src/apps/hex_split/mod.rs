@@ -81,6 +81,9 @@ pub struct OrientedClass {
     /// With a realisation: the dart of the query map built from [`split_query_mesh`]
     /// whose word is the smallest, the start of the class's rule (see `rules`).
     pub query_start: Option<u32>,
+    /// With a realisation: the labels that the rule query's automorphisms take label 1
+    /// to (identity excluded), stored so that building the rules needs no search.
+    pub query_automorphisms: Vec<u32>,
 }
 
 /// The faces of the hexahedron as VTK node quads, outward (right-hand normals), in the

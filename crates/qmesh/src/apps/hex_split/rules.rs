@@ -5,9 +5,9 @@
 
 use super::{HEX_FACES, HexSplits};
 use crate::build::{BuildError, BuildOptions, CellKind, IndexedMesh, build_volume_map};
-use crate::cmap::{CMap3, Dart};
+use crate::cmap::{CMap3, Dart, Standard};
 use crate::modify::{ModifyError, Plan};
-use crate::query::{Condition, Query, QueryError};
+use crate::query::{Automorphisms, Condition, Labelling, Query, QueryError, QueryWord};
 
 /// One recombination rule: its query and what replaces a match.
 #[derive(Clone, Debug)]
@@ -88,6 +88,34 @@ pub fn split_query_mesh(tets: &[[u8; 4]], points: &[[f64; 3]; 8]) -> IndexedMesh
     m
 }
 
+/// The query map of a subdivision: the map [`build_volume_map`] makes of
+/// [`split_query_mesh`] (the same darts, 12 per tetrahedron in order, so the stored
+/// start darts hold), sewn directly: two tetrahedra of a subdivision share a face
+/// exactly when they share its three corners, and a ball has no other contact.
+pub(super) fn split_query_map(tets: &[[u8; 4]], points: &[[f64; 3]; 8]) -> CMap3 {
+    let mut map = CMap3::with_positions(points.to_vec(), 12 * tets.len());
+    let mut out = [0u32; 24];
+    // Per corner mask of a triangle, the first dart of the face seen with it.
+    let mut seen: [Option<Dart>; 256] = [None; 256];
+    for t in tets {
+        map.make_standard_cell(Standard::Tet, &t.map(u32::from), &mut out);
+        for first in [out[0], out[3], out[6], out[9]] {
+            let d = Dart::from_raw(first).expect("created darts are not ε");
+            let face = [d, map.next(d), map.prev(d)];
+            let mask = face.iter().fold(0u8, |m, &x| m | 1 << map.vertex_of(x));
+            let Some(other) = seen[mask as usize].replace(d) else { continue };
+            // The dart of the other face along d's edge, the other way.
+            let (a, b) = (map.vertex_of(d), map.vertex_of(map.next(d)));
+            let mut y = other;
+            while (map.vertex_of(y), map.vertex_of(map.next(y))) != (b, a) {
+                y = map.next(y);
+            }
+            map.link_faces3(d, y);
+        }
+    }
+    map
+}
+
 /// The target mesh: one polyhedron bounded by the subdivision's 12 boundary triangles.
 pub fn split_target_mesh(tets: &[[u8; 4]], points: &[[f64; 3]; 8]) -> IndexedMesh {
     let mut m = IndexedMesh::new();
@@ -108,14 +136,15 @@ pub fn split_target_mesh(tets: &[[u8; 4]], points: &[[f64; 3]; 8]) -> IndexedMes
 /// as possible, so a walk fails early. On Armadillo (149,675 tets) this cuts the
 /// symbols checked from 3.8 G (first dart) to 0.63 G. Stored in the catalogue
 /// ([`super::OrientedClass::query_start`]), as it takes a word per dart.
-pub(super) fn smallest_word_start(tets: &[[u8; 4]], points: &[[f64; 3]; 8]) -> u32 {
-    let (map, _) = build_volume_map(&split_query_mesh(tets, points), &BuildOptions::default())
-        .expect("enumerated subdivisions are valid complexes");
-    let word = |d: Dart| -> Vec<u32> {
-        let l = crate::query::Labelling::new(&map, d).expect("query maps are connected");
-        crate::query::QueryWord::new(&map, &l, |_| Condition::NoConnection).symbols().to_vec()
-    };
-    map.darts().min_by_key(|&d| word(d)).expect("not empty").raw()
+/// Also returns the labels that the query's automorphisms take label 1 to
+/// ([`super::OrientedClass::query_automorphisms`]).
+pub(super) fn rule_start(tets: &[[u8; 4]], points: &[[f64; 3]; 8]) -> (u32, Vec<u32>) {
+    let map = split_query_map(tets, points);
+    let word = |l: &Labelling| QueryWord::new(&map, l, |_| Condition::NoConnection);
+    let labelling = |d: Dart| Labelling::new(&map, d).expect("query maps are connected");
+    let start = map.darts().min_by_key(|&d| word(&labelling(d)).symbols().to_vec()).expect("not empty");
+    let l = labelling(start);
+    (start.raw(), Automorphisms::of(&map, &l, &word(&l)).start_labels())
 }
 
 /// One rule per oriented class that has a positive realisation (2025 §7.1: 171 classes
@@ -137,26 +166,35 @@ fn rule_of(splits: &HexSplits, o: usize) -> Result<HexRule, HexRuleError> {
     {
         let points = class.realization.expect("only realised classes get rules");
         let err_class = class.class;
-        let opts = BuildOptions::default();
-        let (qmap, _) = build_volume_map(&split_query_mesh(&class.tets, &points), &opts)
-            .map_err(|source| HexRuleError::Build { class: err_class, source })?;
+        let qmap = split_query_map(&class.tets, &points);
         let start = class.query_start.and_then(Dart::from_raw).expect("realised classes have a start");
-        let mut query = Query::from_valid_start(&format!("hex-split-{o}"), qmap, start, |_| Condition::NoConnection)
-            .map_err(|source| HexRuleError::Query { class: err_class, source })?;
-        let corners: [u32; 8] = std::array::from_fn(|i| {
-            query.labelling.darts.iter().position(|&d| query.map.vertex_of(d) == i as u32).expect("every node is used")
-                as u32
-                + 1
-        });
-        query.set_corners(corners);
+        // Every node is a vertex id of the query map: its corner is the first label there.
+        let corners = |map: &CMap3, labelling: &Labelling| -> [u32; 8] {
+            let mut corners = [0u32; 8];
+            for (k, &d) in labelling.darts.iter().enumerate().rev() {
+                corners[map.vertex_of(d) as usize] = k as u32 + 1;
+            }
+            corners
+        };
+        let query = Query::from_valid_start_with_corners(
+            &format!("hex-split-{o}"),
+            qmap,
+            start,
+            |_| Condition::NoConnection,
+            corners,
+            Some(&class.query_automorphisms),
+        )
+        .map_err(|source| HexRuleError::Query { class: err_class, source })?;
+        let corners = query.corners.expect("given");
+        let (map, labelling) = (&query.map, &query.labelling);
+        let free: Vec<Dart> = labelling.darts.iter().copied().filter(|&d| map.is_free(d, 3)).collect();
         let diagonals = HEX_FACES.map(|q| {
             let on = |d: Dart, a: u8, b: u8| {
-                let (u, v) = (query.map.vertex_of(d), query.map.vertex_of(query.map.next(d)));
+                let (u, v) = (map.vertex_of(d), map.vertex_of(map.next(d)));
                 (u, v) == (a.into(), b.into()) || (u, v) == (b.into(), a.into())
             };
-            let free: Vec<Dart> = query.labelling.darts.iter().copied().filter(|&d| query.map.is_free(d, 3)).collect();
             let pick = |a: u8, b: u8| -> Vec<u32> {
-                free.iter().filter(|&&d| on(d, a, b)).map(|&d| query.labelling.of(d)).collect()
+                free.iter().filter(|&&d| on(d, a, b)).map(|&d| labelling.of(d)).collect()
             };
             let (a, b) = (pick(q[0], q[2]), pick(q[1], q[3]));
             let found = if a.len() == 2 { a } else { b };
@@ -171,6 +209,27 @@ fn rule_of(splits: &HexSplits, o: usize) -> Result<HexRule, HexRuleError> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The direct sewing gives the general builder's map dart for dart, on every
+    /// realised class.
+    #[test]
+    fn direct_query_maps_equal_the_general_builder() {
+        for o in &HexSplits::get().oriented {
+            let Some(points) = o.realization else { continue };
+            let direct = split_query_map(&o.tets, &points);
+            let (built, report) =
+                build_volume_map(&split_query_mesh(&o.tets, &points), &BuildOptions::default()).unwrap();
+            assert_eq!(report.split_vertices, 0);
+            assert_eq!(direct.dart_capacity(), built.dart_capacity());
+            for d in built.darts() {
+                for i in 0..=3 {
+                    assert_eq!(direct.beta(d, i), built.beta(d, i), "class {}: β{i} of dart {}", o.class, d.raw());
+                }
+                assert_eq!(direct.vertex_of(d), built.vertex_of(d));
+            }
+            assert!(direct.is_valid().is_empty());
+        }
+    }
 
     #[test]
     fn one_valid_rule_per_realisable_oriented_class_with_distinct_words() {
@@ -195,6 +254,10 @@ mod tests {
             let tets = splits.oriented[r.target.oriented].tets.len();
             assert_eq!(r.query.nb_darts(), 12 * tets);
             assert_eq!(r.query.nb_volumes(), tets);
+            // The stored automorphisms are those a search finds.
+            let searched = Automorphisms::of(&r.query.map, &r.query.labelling, &r.query.word);
+            assert_eq!(searched.start_labels(), r.query.automorphisms.start_labels(), "{}", r.query.name);
+            assert_eq!(searched.count(), r.query.automorphisms.count());
             assert!(r.query.map.is_valid().is_empty());
             // The 36 boundary darts stay (the hexahedron's), the others go.
             assert_eq!(plan.darts_removed(), 12 * tets - 36, "{}", r.query.name);

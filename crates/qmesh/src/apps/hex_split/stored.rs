@@ -14,6 +14,7 @@ pub(super) struct Stored {
     pub tets: &'static [[u8; 4]],
     pub realization: Option<[[f64; 3]; 8]>,
     pub start: u32,
+    pub automorphisms: &'static [u16],
 }
 
 /// The catalogue from the table.
@@ -25,6 +26,7 @@ pub(super) fn from_table() -> HexSplits {
             class: s.class.into(),
             realization: s.realization,
             query_start: s.realization.map(|_| s.start),
+            query_automorphisms: s.automorphisms.iter().map(|&l| l.into()).collect(),
         })
         .collect();
     let mut classes: Vec<SplitClass> = table::MEMBERS
@@ -107,10 +109,11 @@ fn table_source(s: &HexSplits) -> String {
         };
         let _ = writeln!(
             out,
-            "S {{ class: {}, tets: &[{}], realization: {realization}, start: {} }},",
+            "S {{ class: {}, tets: &[{}], realization: {realization}, start: {}, automorphisms: &{:?} }},",
             o.class,
             tets.join(", "),
-            o.query_start.unwrap_or(0)
+            o.query_start.unwrap_or(0),
+            o.query_automorphisms
         );
     }
     out.push_str("];\n");
