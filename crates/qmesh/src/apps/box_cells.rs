@@ -15,6 +15,28 @@ pub(crate) fn volume_box(map: &CMap3, d: Dart, w: &mut OrbitWalker) -> Aabb {
     Aabb::of(w.collect(map, d, Orbit::Volume).iter().map(|&x| map.point(x)))
 }
 
+/// The box of the volume of `d`, a child (octant) of the box `parent`, read from one
+/// of its vertices off the parent's centre planes: the child's faces on the parent's
+/// faces hold the parent's corner, and each face on a centre plane has one of them
+/// across an edge. Falls back to [`volume_box`] if none is found so.
+pub(crate) fn child_box(map: &CMap3, d: Dart, parent: &Aabb, w: &mut OrbitWalker) -> Aabb {
+    let (c, e) = (parent.centre(), parent.extent());
+    let off_centre = |p: &[f64; 3]| (0..3).all(|k| (p[k] - c[k]).abs() > LATTICE_TOL * e[k]);
+    let across = map.face_cycle(d).filter_map(|x| map.beta(x, 2)).flat_map(|y| map.face_cycle(y));
+    let Some(p) = map.face_cycle(d).chain(across).map(|x| map.point(x)).find(off_centre) else {
+        return volume_box(map, d, w);
+    };
+    let mut b = *parent;
+    for k in 0..3 {
+        if p[k] > c[k] {
+            b.lo[k] = c[k];
+        } else {
+            b.hi[k] = c[k];
+        }
+    }
+    b
+}
+
 fn on_side(b: &Aabb, k: usize, x: f64) -> bool {
     let tol = LATTICE_TOL * b.extent()[k];
     (x - b.lo[k]).abs() <= tol || (x - b.hi[k]).abs() <= tol
@@ -47,4 +69,29 @@ pub(crate) fn box_corner_darts<'a>(map: &'a CMap3, volume: &'a [Dart], b: &'a Aa
 /// as each long-lived walker takes a bit set as large as the map.
 pub(crate) fn walker_chunk(n: usize) -> usize {
     n.div_ceil(4 * rayon::current_num_threads()).max(1024)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::build::{BuildOptions, build_map};
+
+    /// The eight cells of a 2×2×2 grid are the octants of its box: read from any of
+    /// their darts, each child box is the volume's own box.
+    #[test]
+    fn child_boxes_are_the_volumes_boxes_from_every_dart() {
+        let (map, _) = build_map(crate::generate::hex_grid(2, 2, 2), &BuildOptions::default()).unwrap();
+        let mut w = OrbitWalker::new();
+        let parent = Aabb::of(map.positions().iter().copied());
+        let mut octants = std::collections::BTreeSet::new();
+        for v in map.cells(Orbit::Volume) {
+            let own = volume_box(&map, v, &mut w);
+            octants.insert(own.lo.map(|x| x as i64));
+            for d in map.orbit(v, Orbit::Volume) {
+                let b = child_box(&map, d, &parent, &mut w);
+                assert_eq!((b.lo, b.hi), (own.lo, own.hi), "from dart {}", d.raw());
+            }
+        }
+        assert_eq!(octants.len(), 8);
+    }
 }

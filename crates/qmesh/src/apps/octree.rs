@@ -313,12 +313,17 @@ pub fn outside_among(root: &RootBox, cells: &[OctCell], touched: &[bool], surfac
         i
     }
     const FACES: [[i64; 3]; 6] = [[-1, 0, 0], [1, 0, 0], [0, -1, 0], [0, 1, 0], [0, 0, -1], [0, 0, 1]];
-    for (k, &i) in order.iter().enumerate() {
-        for d in FACES {
-            if let Some(j) = neighbour(cells[i as usize], d) {
-                let (a, b) = (find(&mut parent, k as u32), find(&mut parent, j));
-                parent[a.max(b) as usize] = a.min(b);
-            }
+    // The neighbours are looked up on all cores, then joined in order (the same sets
+    // whatever the number of threads).
+    let neighbours: Vec<[u32; 6]> = order
+        .par_iter()
+        .with_min_len(1 << 12)
+        .map(|&i| FACES.map(|d| neighbour(cells[i as usize], d).unwrap_or(u32::MAX)))
+        .collect();
+    for (k, around) in neighbours.iter().enumerate() {
+        for &j in around.iter().filter(|&&j| j != u32::MAX) {
+            let (a, b) = (find(&mut parent, k as u32), find(&mut parent, j));
+            parent[a.max(b) as usize] = a.min(b);
         }
     }
     let mut inside: FxHashMap<u32, bool> = FxHashMap::default();

@@ -10,7 +10,7 @@ use rayon::prelude::*;
 use rustc_hash::FxHashSet;
 use smallvec::SmallVec;
 
-use super::box_cells::{box_corner_darts, is_corner, walker_chunk};
+use super::box_cells::{box_corner_darts, child_box, is_corner, walker_chunk};
 use super::subdivide::SubdivideReport;
 use crate::cmap::{BitSet, CMap3, Dart, MapError, Orbit, OrbitWalker};
 use crate::geom::Aabb;
@@ -39,9 +39,17 @@ struct Scratch {
     on_listed_face: FxHashSet<Dart>,
 }
 
+/// What [`refine`] made.
+pub(super) struct Refined {
+    /// One dart and the box of each child.
+    pub children: Vec<(Dart, Aabb)>,
+    /// The refined cells' boxes, in their order.
+    pub parents: Vec<Aabb>,
+}
+
 /// Refines the volumes of `cells` into their children of level `child_level`: splits
 /// their whole edges, flags their corner darts, query-replaces their faces, then
-/// themselves. Returns one dart of each child and the cells' boxes.
+/// themselves.
 pub(super) fn refine(
     map: &mut CMap3,
     set: &PatternSet,
@@ -49,7 +57,7 @@ pub(super) fn refine(
     child_level: i32,
     use_signatures: bool,
     r: &mut SubdivideReport,
-) -> Result<(Vec<Dart>, Vec<Aabb>), MapError> {
+) -> Result<Refined, MapError> {
     let t = Instant::now();
     let before = on_cores(cells, |w, d| read_cell(map, w, d));
     // The cell's darts take the children's level; the darts the edge splits and the
@@ -81,8 +89,19 @@ pub(super) fn refine(
     r.volumes_replaced += rep.volumes_replaced;
     r.phases.lookup += rep.query_seconds;
     r.phases.apply += t.elapsed().as_secs_f64() - rep.query_seconds;
-    let children = rep.created_volumes.into_iter().map(|(d, _)| d).collect();
-    Ok((children, before.into_iter().map(|c| c.bbox).collect()))
+    // The children's boxes, for their octree cells and contact tests (counted there).
+    let t = Instant::now();
+    let parents: Vec<Aabb> = before.into_iter().map(|c| c.bbox).collect();
+    let from = &rep.created_from;
+    let children = rep
+        .created_volumes
+        .par_iter()
+        .zip(from)
+        .with_min_len(1 << 12)
+        .map_init(OrbitWalker::new, |w, (&(d, _), &i)| (d, child_box(map, d, &parents[i as usize], w)))
+        .collect();
+    r.phases.contact += t.elapsed().as_secs_f64();
+    Ok(Refined { children, parents })
 }
 
 fn read_cell(map: &CMap3, s: &mut Scratch, d: Dart) -> Cell {

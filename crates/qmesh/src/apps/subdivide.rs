@@ -7,13 +7,13 @@ use std::time::Instant;
 
 use rayon::prelude::*;
 
-use super::box_cells::{cell_of, volume_box, walker_chunk};
+use super::box_cells::{cell_of, volume_box};
 use super::generated_patterns::{GeneratedKind, given_or_generated};
 use super::octree::{OctCell, Octree, RootBox, outside_among};
 use super::refine::refine;
 use crate::build::{BuildOptions, IndexedMesh, build_map};
 use crate::cmap::{CMap3, Dart, MapError, Mark, Orbit, OrbitWalker};
-use crate::geom::TriangleBvh;
+use crate::geom::{Aabb, TriangleBvh};
 use crate::pattern::PatternSet;
 use rustc_hash::FxHashMap;
 
@@ -219,11 +219,12 @@ fn subdivide_qr(
     // The volumes made by the last level: the only ones the surface may touch, or that
     // may be outside and untouched, among the cells of their level (the older leaves
     // were refined, removed or found inside; balance refines inside cells only).
-    let mut fresh: Vec<Dart> = map.cells(Orbit::Volume).collect();
+    let mut w = OrbitWalker::new();
+    let mut fresh: Vec<(Dart, Aabb)> = map.cells(Orbit::Volume).map(|d| (d, volume_box(&map, d, &mut w))).collect();
     r.phases.start = t.elapsed().as_secs_f64();
     for level in 1..=opts.levels + 1 {
         let t = Instant::now();
-        let mut cells = fresh_cells(&map, root, surface, &fresh);
+        let mut cells = fresh_cells(root, surface, &fresh);
         leaves.extend(cells.iter().map(|c| (c.cell, c.dart)));
         r.phases.contact += t.elapsed().as_secs_f64();
         if opts.remove_outside {
@@ -246,11 +247,11 @@ fn subdivide_qr(
         fresh.clear();
         for batch in plan.chunk_by(|a, b| a.0 == b.0) {
             let cells: Vec<Dart> = batch.iter().map(|&(_, d)| d).collect();
-            let (children, parents) = refine(&mut map, set, &cells, batch[0].0 + 1, opts.use_signatures, &mut r)?;
-            parents.iter().for_each(|b| {
+            let refined = refine(&mut map, set, &cells, batch[0].0 + 1, opts.use_signatures, &mut r)?;
+            refined.parents.iter().for_each(|b| {
                 leaves.remove(&cell_of(root, b));
             });
-            fresh.extend(children);
+            fresh.extend(refined.children);
         }
     }
     Ok((map, r, leaves))
@@ -304,16 +305,14 @@ struct FreshCell {
     touches: bool,
 }
 
-/// Each of `volumes` as a [`FreshCell`], on all cores.
-fn fresh_cells(map: &CMap3, root: RootBox, surface: &TriangleBvh, volumes: &[Dart]) -> Vec<FreshCell> {
+/// Each of `volumes` (with its box) as a [`FreshCell`], on all cores.
+fn fresh_cells(root: RootBox, surface: &TriangleBvh, volumes: &[(Dart, Aabb)]) -> Vec<FreshCell> {
     volumes
-        .par_chunks(walker_chunk(volumes.len()))
-        .flat_map_iter(|c| {
-            let mut w = OrbitWalker::new();
-            c.iter().map(move |&dart| {
-                let cell = cell_of(root, &volume_box(map, dart, &mut w));
-                FreshCell { dart, cell, touches: surface.intersects_box(&root.cell_box(cell)) }
-            })
+        .par_iter()
+        .with_min_len(1 << 10)
+        .map(|&(dart, b)| {
+            let cell = cell_of(root, &b);
+            FreshCell { dart, cell, touches: surface.intersects_box(&root.cell_box(cell)) }
         })
         .collect()
 }

@@ -60,6 +60,10 @@ pub struct ReplaceReport {
     /// `pattern_id` cell array; see [`crate::build::volume_values`]).
     #[serde(skip)]
     pub created_volumes: Vec<(Dart, u32)>,
+    /// For each of `created_volumes`, the index in the replaced `volumes` of the volume
+    /// it came from.
+    #[serde(skip)]
+    pub created_from: Vec<u32>,
 }
 
 /// A configuration (face or volume boundary) that no pattern matched.
@@ -189,7 +193,7 @@ pub fn replace_cells(
     if has(PatternKind::Volume) {
         let mut plans: Vec<Option<Option<VolumePattern>>> = vec![None; set.patterns.len()];
         let mut executor = DisjointExecutor::default();
-        for chunk in volumes.chunks(LOOKUP_CHUNK) {
+        for (c, chunk) in volumes.chunks(LOOKUP_CHUNK).enumerate() {
             let t = Instant::now();
             // The match and the traversal from its start, which the replacement follows.
             let found = on_cores(chunk, |d| {
@@ -202,13 +206,13 @@ pub fn replace_cells(
                 plans[i].get_or_insert_with(|| VolumePattern::new(&set.patterns[i]));
             }
             let (mut jobs, mut used) = (Vec::with_capacity(chunk.len()), Vec::with_capacity(chunk.len()));
-            for (&d, found) in chunk.iter().zip(found) {
+            for (k, (&d, found)) in chunk.iter().zip(found).enumerate() {
                 match found.and_then(|(i, traversal)| Some((i, plans[i].as_ref()?.as_ref()?.job(traversal)?))) {
                     Some((i, job)) => {
                         r.matches[i] += 1;
                         r.volumes_replaced += 1;
                         jobs.push(job);
-                        used.push(i);
+                        used.push((i, (c * LOOKUP_CHUNK + k) as u32));
                     }
                     None => {
                         r.unmatched_volumes += 1;
@@ -220,9 +224,10 @@ pub fn replace_cells(
             }
             let created = executor.execute(map, &jobs);
             let mut first = 0;
-            for (&i, job) in used.iter().zip(&jobs) {
+            for (&(i, from), job) in used.iter().zip(&jobs) {
                 let starts = &plans[i].as_ref().and_then(Option::as_ref).expect("a job has a plan").volume_starts;
                 r.created_volumes.extend(starts.iter().map(|&k| (created[first + k as usize], i as u32)));
+                r.created_from.extend(starts.iter().map(|_| from));
                 first += job.plan.new_darts.len();
             }
             r.replace_seconds += t.elapsed().as_secs_f64();
