@@ -111,6 +111,24 @@ fn face_and_edge_offsets() -> impl Iterator<Item = [i64; 3]> {
     })
 }
 
+/// The leaves coarser than level `below` that share a face or an edge with `cell`
+/// (`is_leaf` says which cells are leaves; at most one per neighbour position).
+pub(crate) fn coarser_neighbours(
+    root: &RootBox,
+    cell: OctCell,
+    below: u8,
+    is_leaf: impl Fn(&OctCell) -> bool,
+) -> impl Iterator<Item = OctCell> {
+    face_and_edge_offsets().filter_map(move |d| {
+        let p = [0, 1, 2].map(|k| i64::from(cell.ijk[k]) + d[k]);
+        if !root.contains(cell.level, p) {
+            return None;
+        }
+        let same = OctCell { level: cell.level, ijk: p.map(|x| x as u32) };
+        (0..below).rev().map(|l| same.ancestor(l)).find(|c| is_leaf(c))
+    })
+}
+
 /// The leaves of an octree.
 #[derive(Clone, Debug)]
 pub struct Octree {
@@ -141,16 +159,7 @@ impl Octree {
     fn unbalanced_by(&self, fine: &[OctCell]) -> Vec<OctCell> {
         let mut out: FxHashSet<OctCell> = FxHashSet::default();
         for &f in fine.iter().filter(|f| f.level >= 2) {
-            for d in face_and_edge_offsets() {
-                let p = [0, 1, 2].map(|k| i64::from(f.ijk[k]) + d[k]);
-                if !self.root.contains(f.level, p) {
-                    continue;
-                }
-                let same = OctCell { level: f.level, ijk: p.map(|x| x as u32) };
-                if let Some(c) = (0..=f.level - 2).map(|l| same.ancestor(l)).find(|c| self.leaves.contains(c)) {
-                    out.insert(c);
-                }
-            }
+            out.extend(coarser_neighbours(&self.root, f, f.level - 1, |c| self.leaves.contains(c)));
         }
         let mut v: Vec<OctCell> = out.into_iter().collect();
         v.sort_unstable();

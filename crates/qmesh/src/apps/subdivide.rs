@@ -9,13 +9,13 @@ use rayon::prelude::*;
 
 use super::box_cells::{cell_of, volume_box};
 use super::generated_patterns::{GeneratedKind, given_or_generated};
-use super::octree::{OctCell, Octree, RootBox, outside_among};
+use super::octree::{OctCell, Octree, RootBox, coarser_neighbours, outside_among};
 use super::refine::refine;
 use crate::build::{BuildOptions, IndexedMesh, build_map};
-use crate::cmap::{CMap3, Dart, MapError, Mark, Orbit, OrbitWalker};
+use crate::cmap::{CMap3, Dart, MapError, Orbit, OrbitWalker};
 use crate::geom::{Aabb, TriangleBvh};
 use crate::pattern::PatternSet;
-use rustc_hash::FxHashMap;
+use rustc_hash::{FxHashMap, FxHashSet};
 
 /// The level-0 cells of [`subdivide`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -215,6 +215,8 @@ fn subdivide_qr(
     // darts they create; children are relabelled after each refinement).
     map.enable_labels();
     let mut r = SubdivideReport::default();
+    // Each leaf's dart stays a dart of its volume: edge splits and face replacements
+    // add darts and relink the old ones, and only refined or removed cells lose theirs.
     let mut leaves: FxHashMap<OctCell, Dart> = FxHashMap::default();
     // The volumes made by the last level: the only ones the surface may touch, or that
     // may be outside and untouched, among the cells of their level (the older leaves
@@ -237,10 +239,13 @@ fn subdivide_qr(
         }
         progress(level);
         let parent_level = i32::from(level) - 1;
-        let touched: Vec<Dart> =
-            cells.iter().filter(|c| c.touches && map.label_of(c.dart) == parent_level).map(|c| c.dart).collect();
+        let touched: Vec<(OctCell, Dart)> = cells
+            .iter()
+            .filter(|c| c.touches && i32::from(c.cell.level) == parent_level)
+            .map(|c| (c.cell, c.dart))
+            .collect();
         let t = Instant::now();
-        let mut plan = balance_closure(&mut map, &touched, parent_level)?;
+        let mut plan = balance_closure(&root, &leaves, &touched);
         r.phases.balance += t.elapsed().as_secs_f64();
         r.balance_splits += plan.len() - touched.len();
         plan.sort_unstable();
@@ -257,44 +262,25 @@ fn subdivide_qr(
     Ok((map, r, leaves))
 }
 
-/// The cells to split with `seeds` (all at level `seed_level`) so that 2:1 balance
-/// survives: every volume sharing an edge with a cell to split and coarser than it is
-/// split first, transitively (2022 §7.1, "those having more than one subdivision
-/// level of difference with a neighbour"). Returns (level, volume dart) pairs.
-fn balance_closure(map: &mut CMap3, seeds: &[Dart], seed_level: i32) -> Result<Vec<(i32, Dart)>, MapError> {
-    let in_plan = map.reserve_mark()?;
-    let (mut w, mut e) = (OrbitWalker::new(), OrbitWalker::new());
-    let (mut darts, mut around) = (Vec::new(), Vec::new());
-    let mut plan: Vec<(i32, Dart)> = Vec::with_capacity(seeds.len());
-    for &d in seeds {
-        add_to_plan(map, &mut w, in_plan, (seed_level, d), &mut plan);
-    }
+/// The cells to split with `seeds` (leaves of one level, with a dart of their volume)
+/// so that 2:1 balance survives: every leaf sharing a face or an edge with a
+/// cell to split and coarser than it is split first, transitively (2022 §7.1, "those
+/// having more than one subdivision level of difference with a neighbour"). Found on
+/// the octree's leaves, which name the map's volumes. Returns (level, volume dart) pairs.
+fn balance_closure(root: &RootBox, leaves: &FxHashMap<OctCell, Dart>, seeds: &[(OctCell, Dart)]) -> Vec<(i32, Dart)> {
+    let mut in_plan: FxHashSet<OctCell> = seeds.iter().map(|s| s.0).collect();
+    let mut queue: Vec<OctCell> = seeds.iter().map(|s| s.0).collect();
     let mut next = 0;
-    while next < plan.len() {
-        let (l, d) = plan[next];
+    while next < queue.len() {
+        let c = queue[next];
         next += 1;
-        darts.clear();
-        darts.extend_from_slice(w.collect(map, d, Orbit::Volume));
-        for &x in &darts {
-            around.clear();
-            around.extend_from_slice(e.collect(map, x, Orbit::Edge));
-            for &y in &around {
-                let ly = map.label_of(y);
-                if ly < l && !map.is_marked(y, in_plan) {
-                    add_to_plan(map, &mut w, in_plan, (ly, y), &mut plan);
-                }
+        for n in coarser_neighbours(root, c, c.level, |x| leaves.contains_key(x)) {
+            if in_plan.insert(n) {
+                queue.push(n);
             }
         }
     }
-    map.free_mark(in_plan);
-    Ok(plan)
-}
-
-fn add_to_plan(map: &mut CMap3, w: &mut OrbitWalker, in_plan: Mark, cell: (i32, Dart), plan: &mut Vec<(i32, Dart)>) {
-    for &x in w.collect(map, cell.1, Orbit::Volume) {
-        map.mark(x, in_plan);
-    }
-    plan.push(cell);
+    queue.iter().map(|c| (i32::from(c.level), leaves[c])).collect()
 }
 
 /// A volume made by the last refinement: one dart, its octree cell, and whether the
