@@ -57,12 +57,17 @@ pub(crate) fn cell_of(root: RootBox, b: &Aabb) -> OctCell {
 /// The darts of `volume` (whose box is `b`) that start at a corner of the box and run
 /// along a box edge (their end shares two coordinates): the flags of the box patterns.
 pub(crate) fn box_corner_darts<'a>(map: &'a CMap3, volume: &'a [Dart], b: &'a Aabb) -> impl Iterator<Item = Dart> + 'a {
-    let e = b.extent();
     volume.iter().copied().filter(move |&x| {
-        let (p, q) = (map.point(x), map.point(map.next(x)));
-        let along_edge = (0..3).filter(|&k| (p[k] - q[k]).abs() <= LATTICE_TOL * e[k]).count() == 2;
-        along_edge && is_corner(b, p)
+        let p = map.point(x);
+        is_corner(b, p) && along_box_edge(b, p, map.point(map.next(x)))
     })
+}
+
+/// Whether the segment p-q of a volume with box `b` runs along one axis (its ends share
+/// two coordinates).
+pub(crate) fn along_box_edge(b: &Aabb, p: [f64; 3], q: [f64; 3]) -> bool {
+    let e = b.extent();
+    (0..3).filter(|&k| (p[k] - q[k]).abs() <= LATTICE_TOL * e[k]).count() == 2
 }
 
 /// Volumes per walker when `n` volumes are walked on all cores: a few chunks per thread,

@@ -7,10 +7,9 @@
 use std::time::Instant;
 
 use rayon::prelude::*;
-use rustc_hash::FxHashSet;
 use smallvec::SmallVec;
 
-use super::box_cells::{box_corner_darts, child_box, is_corner, walker_chunk};
+use super::box_cells::{along_box_edge, child_box, is_corner, walker_chunk};
 use super::subdivide::SubdivideReport;
 use crate::cmap::{BitSet, CMap3, Dart, MapError, Orbit, OrbitWalker};
 use crate::geom::Aabb;
@@ -36,7 +35,8 @@ struct Cell {
 #[derive(Default)]
 struct Scratch {
     walker: OrbitWalker,
-    on_listed_face: FxHashSet<Dart>,
+    /// The darts of the cell being read that lie on a half-face already listed.
+    on_listed_face: BitSet,
 }
 
 /// What [`refine`] made.
@@ -106,26 +106,33 @@ pub(super) fn refine(
 
 fn read_cell(map: &CMap3, s: &mut Scratch, d: Dart) -> Cell {
     let darts = s.walker.collect(map, d, Orbit::Volume).to_vec();
-    let bbox = Aabb::of(darts.iter().map(|&x| map.point(x)));
-    let whole_edges = darts
-        .iter()
-        .filter(|&&x| is_corner(&bbox, map.point(x)) && is_corner(&bbox, map.point(map.next(x))))
-        .map(|&x| (x, edge_name(map, x)))
-        .collect();
-    let corners = box_corner_darts(map, &darts, &bbox).collect();
-    let on_listed_face = &mut s.on_listed_face;
-    on_listed_face.clear();
+    let points: SmallVec<[[f64; 3]; 64]> = darts.iter().map(|&x| map.point(x)).collect();
+    let bbox = Aabb::of(points.iter().copied());
+    let (mut whole_edges, mut corners) = (SmallVec::new(), SmallVec::new());
+    for (&x, &p) in darts.iter().zip(&points).filter(|&(_, &p)| is_corner(&bbox, p)) {
+        let q = map.point(map.next(x));
+        if is_corner(&bbox, q) {
+            whole_edges.push((x, edge_name(map, x)));
+        }
+        if along_box_edge(&bbox, p, q) {
+            corners.push(x);
+        }
+    }
+    // Each half-face once, from its first dart in the order of `darts`.
+    let listed = &mut s.on_listed_face;
+    listed.grow(map.dart_capacity());
     let mut faces = SmallVec::new();
     for &x in &darts {
-        if !on_listed_face.contains(&x) {
+        if !listed.get(x.idx()) {
             let mut name = x;
             for y in map.face_cycle(x) {
-                on_listed_face.insert(y);
+                listed.insert(y.idx());
                 name = name.min(y).min(map.beta(y, 3).unwrap_or(y));
             }
             faces.push((x, name));
         }
     }
+    darts.iter().for_each(|x| listed.remove(x.idx()));
     Cell { darts, bbox, whole_edges, corners, faces }
 }
 
