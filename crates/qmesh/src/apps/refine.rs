@@ -83,7 +83,10 @@ pub(super) fn refine(
     }
     r.phases.split_edges += t.elapsed().as_secs_f64();
     let t = Instant::now();
-    let rep = replace_cells(map, set, Flags::Mark(flag), &faces, cells, use_signatures);
+    // Each volume named by a flagged corner dart: in a cube's configuration every one
+    // is a start of its signature, so the lookup's traversal is also the replacement's.
+    let volumes: Vec<Dart> = before.iter().map(|c| c.corners.first().copied().unwrap_or(c.darts[0])).collect();
+    let rep = replace_cells(map, set, Flags::Mark(flag), &faces, &volumes, use_signatures);
     map.free_mark(flag);
     r.faces_replaced += rep.faces_replaced;
     r.volumes_replaced += rep.volumes_replaced;

@@ -14,7 +14,8 @@ use rustc_hash::FxHashMap;
 
 use crate::geom::centroid;
 use crate::signature::{
-    Flags, Signature, Surface, face_signature, match_direct, start_with_signature, volume_signature_from, word_from,
+    Flags, Signature, Surface, VolumeWord, face_signature, match_direct, start_with_signature, volume_signature_from,
+    word_from,
 };
 
 /// Cells looked up in parallel before their replacements are applied (bounds the
@@ -197,8 +198,10 @@ pub fn replace_cells(
             let t = Instant::now();
             // The match and the traversal from its start, which the replacement follows.
             let found = on_cores(chunk, |d| {
-                let (i, start) = find_volume(map, set, flags, d, use_signatures)?;
-                Some((i, word_from(map, Surface::Cell, flags, start, None)?))
+                find_volume_then(map, set, flags, d, use_signatures, |from_d, i, start| match from_d {
+                    Some(w) if w.darts.first() == Some(&start) => Some((i, w.clone())),
+                    _ => Some((i, word_from(map, Surface::Cell, flags, start, None)?)),
+                })
             });
             r.query_seconds += t.elapsed().as_secs_f64();
             let t = Instant::now();
@@ -271,11 +274,27 @@ pub fn find_face(
 /// The v-pattern matching the volume of `d`, and the target dart corresponding to the
 /// pattern's canonical start.
 pub fn find_volume(map: &CMap3, set: &PatternSet, flags: Flags, d: Dart, by_signature: bool) -> Option<(usize, Dart)> {
+    find_volume_then(map, set, flags, d, by_signature, |_, i, start| Some((i, start)))
+}
+
+/// [`find_volume`], then `then(from_d, pattern, start)`, where `from_d` is the traversal
+/// from `d` that named the configuration when patterns are looked up by signature (the
+/// traversal from the start itself when the start is `d`: a replacement that follows it
+/// need not walk the volume again).
+fn find_volume_then<R>(
+    map: &CMap3,
+    set: &PatternSet,
+    flags: Flags,
+    d: Dart,
+    by_signature: bool,
+    then: impl FnOnce(Option<&VolumeWord>, usize, Dart) -> Option<R>,
+) -> Option<R> {
     if by_signature {
         // One traversal from d names the configuration (see `lookup_memo`).
-        return lookup_memo::with_word(map, flags, d, |darts, word| {
+        return lookup_memo::with_word(map, flags, d, |from_d, word| {
+            let darts = &from_d.darts;
             if let Some(found) = lookup_memo::recall(set, word) {
-                return found.map(|(i, at)| (i as usize, darts[at as usize]));
+                return found.and_then(|(i, at)| then(Some(from_d), i as usize, darts[at as usize]));
             }
             // Only patterns of the volume's shape can match; when one signature has it,
             // its start is found directly (the same start as by minimising, see
@@ -293,12 +312,17 @@ pub fn find_volume(map: &CMap3, set: &PatternSet, flags: Flags, d: Dart, by_sign
             };
             let label = |s: Dart| darts.iter().position(|&x| x == s).expect("the start is a dart of the volume");
             lookup_memo::remember(set, word, found.map(|(i, s)| (i as u32, label(s) as u32)));
-            found
+            found.and_then(|(i, s)| then(Some(from_d), i, s))
         })
         .flatten();
     }
-    set.patterns.iter().enumerate().filter(|(_, p)| p.kind == PatternKind::Volume).find_map(|(i, p)| {
-        match_direct((&p.map, Surface::PatternBoundary, Flags::Mark(p.flags), p.start), (map, Surface::Cell, flags, d))
+    let (i, start) =
+        set.patterns.iter().enumerate().filter(|(_, p)| p.kind == PatternKind::Volume).find_map(|(i, p)| {
+            match_direct(
+                (&p.map, Surface::PatternBoundary, Flags::Mark(p.flags), p.start),
+                (map, Surface::Cell, flags, d),
+            )
             .map(|t| (i, t))
-    })
+        })?;
+    then(None, i, start)
 }

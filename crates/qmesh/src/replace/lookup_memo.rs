@@ -34,10 +34,10 @@ thread_local! {
     static WORD: RefCell<(VolumeWord, Vec<u32>)> = RefCell::new(Default::default());
 }
 
-/// Runs `f` with the darts of the volume of `d` in label order and the word of that
-/// traversal (labels, then flag bits), both in this thread's buffers; None when the
+/// Runs `f` with the traversal of the volume from `d` (its darts in label order) and
+/// its word (labels, then flag bits), both in this thread's buffers; None when the
 /// volume is not closed. `f` must not call it again.
-pub(super) fn with_word<R>(map: &CMap3, flags: Flags, d: Dart, f: impl FnOnce(&[Dart], &[u32]) -> R) -> Option<R> {
+pub(super) fn with_word<R>(map: &CMap3, flags: Flags, d: Dart, f: impl FnOnce(&VolumeWord, &[u32]) -> R) -> Option<R> {
     WORD.with(|buffers| {
         let (w, word) = &mut *buffers.borrow_mut();
         if !word_into(map, Surface::Cell, flags, d, w) {
@@ -46,7 +46,7 @@ pub(super) fn with_word<R>(map: &CMap3, flags: Flags, d: Dart, f: impl FnOnce(&[
         word.clear();
         word.extend_from_slice(&w.word);
         word.extend_from_slice(&w.bits);
-        Some(f(&w.darts, word))
+        Some(f(w, word))
     })
 }
 
