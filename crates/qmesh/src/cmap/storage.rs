@@ -9,6 +9,7 @@ use super::dart::Dart;
 use super::error::MapError;
 use super::huge_pages::advise_huge_pages;
 use super::orbit::LocalScratch;
+use rayon::prelude::*;
 
 /// A 3D combinatorial map (2022 §2.2, 2025 §3.2) with one position per vertex.
 ///
@@ -248,13 +249,13 @@ impl CMap3 {
         self.free_darts.truncate(keep);
         let first = self.betas.len();
         assert!(first + fresh < u32::MAX as usize, "too many darts for u32 indices");
-        self.betas.resize(first + fresh, [0; 4]);
-        self.vertex.resize(first + fresh, DEAD);
+        extend_on_cores(&mut self.betas, [0; 4], fresh);
+        extend_on_cores(&mut self.vertex, DEAD, fresh);
         if !self.marks.is_empty() {
-            self.marks.resize(first + fresh, 0);
+            extend_on_cores(&mut self.marks, 0, fresh);
         }
         if let Some(l) = &mut self.labels {
-            l.resize(first + fresh, 0);
+            extend_on_cores(l, 0, fresh);
         }
         out.extend((first..first + fresh).map(|i| Dart::from_raw(i as u32).expect("index 0 is never reserved")));
     }
@@ -449,5 +450,16 @@ impl CMap3 {
 
     pub(super) fn err_if_dead(&self, d: Dart) -> Result<(), MapError> {
         if self.is_live(d) { Ok(()) } else { Err(MapError::DeadDart(d)) }
+    }
+}
+
+/// Appends `n` copies of `value` to `v`, written on all cores when there are many: the
+/// first writes into a grown table fault its pages in, which the kernel serves on
+/// every core at once.
+fn extend_on_cores<T: Copy + Send + Sync>(v: &mut Vec<T>, value: T, n: usize) {
+    if n < 1 << 16 {
+        v.resize(v.len() + n, value);
+    } else {
+        v.par_extend(rayon::iter::repeat_n(value, n));
     }
 }
