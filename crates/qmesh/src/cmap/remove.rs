@@ -190,16 +190,13 @@ impl CMap3 {
             }
         }
         drop(per_volume);
+        // The neighbours across become 3-free; the removed darts' own links go with them.
         let mut touched = Vec::new();
         for &x in &darts {
-            if let Some(o) = self.beta(x, 3) {
-                self.unlink(x, 3);
-                if !gone.get(o.idx()) {
-                    touched.push(o);
-                }
+            if let Some(o) = self.beta(x, 3).filter(|o| !gone.get(o.idx())) {
+                self.set_beta_raw(o.raw(), 3, 0);
+                touched.push(o);
             }
-        }
-        for &x in &darts {
             self.delete_dart(x);
         }
         self.split_vertex_ids(&touched);

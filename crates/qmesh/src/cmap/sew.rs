@@ -33,7 +33,7 @@ impl CMap3 {
             .filter(|&(_, &t)| self.is_live(t))
             .map(|(i, &t)| (self.vertex_of(t), i as u32))
             .collect();
-        by_id.sort_unstable();
+        by_id.par_sort_unstable();
         let groups: Vec<&[(u32, u32)]> = by_id.chunk_by(|a, b| a.0 == b.0).filter(|g| g.len() > 1).collect();
         let map = &*self;
         // The orbits after the first of one id, each with where it was first met. Most
