@@ -197,3 +197,48 @@ fn merged_pair_grid() -> CMap3 {
     m.compact();
     m
 }
+
+/// Every count of a rule's report, on a case worked out by hand: a column of 3 cubes,
+/// each extended by a second cube glued on one of its free faces.
+#[test]
+fn a_rule_report_counts_what_the_rule_did() {
+    let mut m = grid(1, 3, 1);
+    let r = &run_rules(&mut m, &[rule(Operation::Extend, grid(1, 1, 1), &grid(2, 1, 1))])[0];
+    assert_eq!((r.rule.as_str(), r.op), ("q", "extend"));
+    // The face the target glues on must be free (ε), so the query keeps the 4 rotations
+    // about it. One match per cube (its darts), and one per free face and rotation with
+    // the automorphisms: 5 × 4 at each end of the column, 4 × 4 in the middle.
+    assert_eq!((r.matches, r.matches_with_automorphisms, r.automorphisms), (3, 56, 4));
+    assert_eq!((r.selected, r.modified, r.starts_tested), (3, 3, None));
+    // Each glued cube: 24 darts, 4 vertices of its own.
+    assert_eq!((r.darts_added, r.darts_removed, r.vertices_created), (72, 0, 12));
+    assert_eq!((r.volumes_before, r.volumes_after, r.darts_before, r.darts_after), (3, 6, 72, 144));
+    assert!(r.query_seconds > 0.0 && r.modify_seconds > 0.0, "{r:?}");
+    assert!(r.valid && r.problem.is_none());
+}
+
+/// A rule ranked by a metric takes its best match first: of the pairs of a row whose
+/// last cell is stretched, the one holding that cell.
+#[test]
+fn a_ranked_rule_selects_by_its_metric() {
+    let mut mesh = hex_grid(4, 1, 1);
+    mesh.points.iter_mut().filter(|p| p[0] > 3.5).for_each(|p| p[0] = 7.0);
+    let mut m = build_volume_map(&mesh, &BuildOptions::default()).unwrap().0;
+    let mut r = rule(Operation::Delete, grid(2, 1, 1), &grid(1, 1, 1));
+    r.strategy = qmesh::query::Strategy::Best;
+    r.metric = Some(qmesh::query::Metric::Volume);
+    r.max = Some(1);
+    let report = &run_rules(&mut m, &[r])[0];
+    assert_eq!((report.selected, report.volumes_after), (1, 3));
+    // The best pair holds the stretched cell (x from 3 to 7, volume 4 against 1): the
+    // first two cells, which a selection in dart order would have taken, are left whole.
+    let mut spans: Vec<(f64, f64)> = m
+        .cells(Orbit::Volume)
+        .map(|d| {
+            let xs = m.orbit(d, Orbit::Volume).iter().map(|&x| m.point(x)[0]).collect::<Vec<_>>();
+            (xs.iter().copied().fold(f64::MAX, f64::min), xs.iter().copied().fold(f64::MIN, f64::max))
+        })
+        .collect();
+    spans.sort_by(|a, b| a.partial_cmp(b).unwrap());
+    assert_eq!(&spans[..2], &[(0.0, 1.0), (1.0, 2.0)], "{spans:?}");
+}
