@@ -19,7 +19,8 @@ fn residual(a: &CMap3, b: &CMap3, pairs: impl Iterator<Item = (Dart, Dart)>) -> 
 }
 
 /// The placement of `small` inside `big` (label k of `small` → dart of `big`) whose
-/// geometry fits best, ignoring boundary conditions; None if `small` does not occur.
+/// geometry fits best, ignoring boundary conditions (of equally good ones, the one
+/// from the first start dart); None if `small` does not occur.
 pub fn embed(small: &Query, big: &CMap3) -> Option<Vec<Dart>> {
     let word = small.word.with_all_conditions(Condition::Any);
     let mut a = Annotator::new(small.nb_darts());
@@ -38,7 +39,9 @@ pub fn embed(small: &Query, big: &CMap3) -> Option<Vec<Dart>> {
 }
 
 /// A correspondence between the boundary surfaces (3-free darts) of `q` and `t`, as
-/// pairs (dart of q, dart of t), or None when the boundaries are not isomorphic.
+/// pairs (dart of q, dart of t): of the isomorphisms, the one whose positions coincide
+/// best (of equally good ones, the one from t's first start dart); None when the
+/// boundaries are not isomorphic.
 pub fn boundary_correspondence(q: &CMap3, t: &CMap3) -> Option<Vec<(Dart, Dart)>> {
     let q0 = q.darts().find(|&d| q.is_free(d, 3))?;
     let qw = word_from(q, Surface::PatternBoundary, Flags::None, q0, None)?;

@@ -242,3 +242,54 @@ fn a_ranked_rule_selects_by_its_metric() {
     spans.sort_by(|a, b| a.partial_cmp(b).unwrap());
     assert_eq!(&spans[..2], &[(0.0, 1.0), (1.0, 2.0)], "{spans:?}");
 }
+
+/// A unit cube's map, its nodes listed from corner `first` of the bottom face (the same
+/// geometry, its darts numbered from another corner), moved by `dx` along x.
+fn cube_from(first: usize, dx: f64) -> CMap3 {
+    let mut mesh = hex_grid(1, 1, 1);
+    mesh.points.iter_mut().for_each(|p| p[0] += dx);
+    let (bottom, top) = ([0, 1, 2, 3], [4, 5, 6, 7]);
+    let nodes: Vec<u32> = mesh.cell(0).1.to_vec();
+    let turned: Vec<u32> =
+        bottom.iter().chain(&top).map(|&i| nodes[(i + first) % 4 + if i < 4 { 0 } else { 4 }]).collect();
+    let mut turned_mesh = qmesh::build::IndexedMesh::new();
+    turned_mesh.points = mesh.points.clone();
+    turned_mesh.push_cell(qmesh::build::CellKind::Hex, &turned, None);
+    build_volume_map(&turned_mesh, &BuildOptions::default()).unwrap().0
+}
+
+/// m_QT (2025 §6): of a query's placements in a target, the one whose positions
+/// coincide is taken, not the first met; and ties (all positions equal) go to the first
+/// start dart, so a plan does not depend on anything but the maps.
+#[test]
+fn a_query_is_placed_where_its_geometry_fits() {
+    use qmesh::modify::correspondence::embed;
+    let q = Query::new("cube", cube_from(0, 1.0), |_| Condition::Any).unwrap();
+    let pair = grid(2, 1, 1);
+    let m = embed(&q, &pair).expect("a cube is in a pair");
+    for (&x, &y) in q.labelling.darts.iter().zip(&m) {
+        assert_eq!(q.map.point(x), pair.point(y), "label of {}", x.raw());
+    }
+    let mut flat = hex_grid(2, 1, 1);
+    flat.points.iter_mut().for_each(|p| *p = [0.0; 3]);
+    let flat = build_volume_map(&flat, &BuildOptions::default()).unwrap().0;
+    assert_eq!(embed(&q, &flat).expect("placements")[0], flat.darts().next().unwrap());
+}
+
+/// The same for the boundaries of a replacement: the cube's boundary paired with the
+/// same cube numbered from another corner goes dart to dart by position.
+#[test]
+fn boundaries_are_paired_where_their_geometry_fits() {
+    use qmesh::modify::correspondence::boundary_correspondence;
+    for first in 1..4 {
+        let (q, t) = (cube_from(0, 0.0), cube_from(first, 0.0));
+        let pairs = boundary_correspondence(&q, &t).expect("isomorphic boundaries");
+        assert_eq!(pairs.len(), 24);
+        assert!(pairs.iter().all(|&(x, y)| q.point(x) == t.point(y)), "from corner {first}");
+    }
+    let mut flat = hex_grid(1, 1, 1);
+    flat.points.iter_mut().for_each(|p| *p = [0.0; 3]);
+    let flat = build_volume_map(&flat, &BuildOptions::default()).unwrap().0;
+    let pairs = boundary_correspondence(&cube_from(0, 0.0), &flat).expect("isomorphic boundaries");
+    assert_eq!(pairs[0].1, flat.darts().find(|&d| flat.is_free(d, 3)).unwrap());
+}
