@@ -293,3 +293,20 @@ fn boundaries_are_paired_where_their_geometry_fits() {
     let pairs = boundary_correspondence(&cube_from(0, 0.0), &flat).expect("isomorphic boundaries");
     assert_eq!(pairs[0].1, flat.darts().find(|&d| flat.is_free(d, 3)).unwrap());
 }
+
+/// A replacement needs one boundary surface on each side: two separate cubes have two,
+/// so they are refused, even against an identical pair (matching one of the two
+/// surfaces would leave the other unpaired).
+#[test]
+fn boundaries_of_several_surfaces_are_not_paired() {
+    use qmesh::modify::correspondence::boundary_correspondence;
+    let mut two = hex_grid(1, 1, 1);
+    let far: Vec<[f64; 3]> = two.points.iter().map(|p| [p[0] + 5.0, p[1], p[2]]).collect();
+    let nodes: Vec<u32> = two.cell(0).1.iter().map(|&v| v + 8).collect();
+    two.points.extend(far);
+    two.push_cell(qmesh::build::CellKind::Hex, &nodes, None);
+    let two = build_volume_map(&two, &BuildOptions::default()).unwrap().0;
+    assert_eq!(two.count_cells().volumes, 2);
+    assert!(boundary_correspondence(&two, &two).is_none());
+    assert!(boundary_correspondence(&cube_from(0, 0.0), &cube_from(0, 0.0)).is_some());
+}
