@@ -310,3 +310,23 @@ fn boundaries_of_several_surfaces_are_not_paired() {
     assert!(boundary_correspondence(&two, &two).is_none());
     assert!(boundary_correspondence(&cube_from(0, 0.0), &cube_from(0, 0.0)).is_some());
 }
+
+/// A target that labels its own volume passes the label to what it adds, on a map that
+/// had no labels yet; the volumes the match held keep theirs (0).
+#[test]
+fn a_target_label_marks_the_added_volumes() {
+    let mut m = grid(1, 3, 1);
+    let mut pair = grid(2, 1, 1);
+    pair.enable_labels();
+    let second: Vec<_> = pair.cells(Orbit::Volume).collect::<Vec<_>>()[1..].to_vec();
+    for v in second {
+        for x in pair.orbit(v, Orbit::Volume) {
+            pair.set_label_of(x, 5);
+        }
+    }
+    let r = run_rules(&mut m, &[rule(Operation::Extend, grid(1, 1, 1), &pair)]);
+    assert_eq!(r[0].volumes_after, 6);
+    let mut labels: Vec<i32> = m.cells(Orbit::Volume).map(|d| m.label_of(d)).collect();
+    labels.sort_unstable();
+    assert_eq!(labels, [0, 0, 0, 5, 5, 5]);
+}
