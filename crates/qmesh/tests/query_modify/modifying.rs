@@ -330,3 +330,32 @@ fn a_target_label_marks_the_added_volumes() {
     labels.sort_unstable();
     assert_eq!(labels, [0, 0, 0, 5, 5, 5]);
 }
+
+/// The batch executor takes plans that delete darts one match at a time (its batched
+/// path only adds): the same map, dart for dart, as `execute` match after match.
+#[test]
+fn batched_deletions_equal_one_by_one() {
+    use qmesh::modify::{DisjointExecutor, Job, execute};
+    use qmesh::query::{Strategy, select};
+    let mut q = Query::new("pair", grid(2, 1, 1), |_| Condition::Any).unwrap();
+    let plan = Plan::new(Operation::Delete, &mut q, &grid(1, 1, 1)).unwrap();
+    let set = QuerySet::new(vec![q]);
+    let mut batched = grid(4, 1, 1);
+    let found = find_matches(&batched, &set, &MatchOptions::default());
+    let chosen = select(&batched, &set, &found.matches, Strategy::Greedy, None);
+    assert_eq!(chosen.len(), 2);
+    let mut one_by_one = batched.clone();
+    let jobs: Vec<Job> = chosen.iter().map(|s| Job { plan: &plan, matched: s.darts.clone() }).collect();
+    DisjointExecutor::default().execute(&mut batched, &jobs);
+    for s in &chosen {
+        execute(&mut one_by_one, &plan, &s.darts);
+    }
+    assert!(batched.is_valid().is_empty());
+    assert_eq!(batched.count_cells().volumes, 2);
+    assert_eq!(batched.dart_capacity(), one_by_one.dart_capacity());
+    for raw in 1..batched.dart_capacity() as u32 {
+        let d = qmesh::cmap::Dart::from_raw(raw).unwrap();
+        let slot = |m: &CMap3| m.is_live(d).then(|| (m.betas_raw(raw), m.vertex_of(d)));
+        assert_eq!(slot(&batched), slot(&one_by_one), "dart {raw}");
+    }
+}
