@@ -122,13 +122,11 @@ fn refill<T: Default + Clone>(v: &mut Vec<T>, n: usize) {
     v.resize(n, T::default());
 }
 
-/// The slot of the reverse link of a βi link (β1 and β0 are inverse, β2 and β3 involutions).
+/// The slot of the reverse link of a βi link: plans link through β1 (whose inverse is
+/// β0), β2 and β3 (involutions).
 fn back_slot(i: usize) -> usize {
-    match i {
-        0 => 1,
-        1 => 0,
-        _ => i,
-    }
+    debug_assert!((1..=3).contains(&i), "plans link through β1, β2 and β3");
+    if i == 1 { 0 } else { i }
 }
 
 /// What executing a plan once adds.

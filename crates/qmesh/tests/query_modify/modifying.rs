@@ -311,11 +311,8 @@ fn boundaries_of_several_surfaces_are_not_paired() {
     assert!(boundary_correspondence(&cube_from(0, 0.0), &cube_from(0, 0.0)).is_some());
 }
 
-/// A target that labels its own volume passes the label to what it adds, on a map that
-/// had no labels yet; the volumes the match held keep theirs (0).
-#[test]
-fn a_target_label_marks_the_added_volumes() {
-    let mut m = grid(1, 3, 1);
+/// The 2×1×1 pair whose second cube carries label 5.
+fn pair_with_labelled_second() -> CMap3 {
     let mut pair = grid(2, 1, 1);
     pair.enable_labels();
     let second: Vec<_> = pair.cells(Orbit::Volume).collect::<Vec<_>>()[1..].to_vec();
@@ -324,11 +321,36 @@ fn a_target_label_marks_the_added_volumes() {
             pair.set_label_of(x, 5);
         }
     }
-    let r = run_rules(&mut m, &[rule(Operation::Extend, grid(1, 1, 1), &pair)]);
-    assert_eq!(r[0].volumes_after, 6);
+    pair
+}
+
+fn sorted_volume_labels(m: &CMap3) -> Vec<i32> {
     let mut labels: Vec<i32> = m.cells(Orbit::Volume).map(|d| m.label_of(d)).collect();
     labels.sort_unstable();
-    assert_eq!(labels, [0, 0, 0, 5, 5, 5]);
+    labels
+}
+
+/// A target that labels its own volume passes the label to what it adds, on a map that
+/// had no labels yet; the volumes the match held keep theirs (0). The same through the
+/// batch executor.
+#[test]
+fn a_target_label_marks_the_added_volumes() {
+    use qmesh::modify::{DisjointExecutor, Job};
+    use qmesh::query::{Strategy, select};
+    let mut m = grid(1, 3, 1);
+    let r = run_rules(&mut m, &[rule(Operation::Extend, grid(1, 1, 1), &pair_with_labelled_second())]);
+    assert_eq!(r[0].volumes_after, 6);
+    assert_eq!(sorted_volume_labels(&m), [0, 0, 0, 5, 5, 5]);
+    let mut q = Query::new("cube", grid(1, 1, 1), |_| Condition::Any).unwrap();
+    let plan = Plan::new(Operation::Extend, &mut q, &pair_with_labelled_second()).unwrap();
+    let set = QuerySet::new(vec![q]);
+    let mut m = grid(1, 3, 1);
+    let found = find_matches(&m, &set, &MatchOptions::default());
+    let chosen = select(&m, &set, &found.matches, Strategy::Greedy, None);
+    let jobs: Vec<Job> = chosen.iter().map(|s| Job { plan: &plan, matched: s.darts.clone() }).collect();
+    DisjointExecutor::default().execute(&mut m, &jobs);
+    assert!(m.is_valid().is_empty());
+    assert_eq!(sorted_volume_labels(&m), [0, 0, 0, 5, 5, 5]);
 }
 
 /// The batch executor takes plans that delete darts one match at a time (its batched
