@@ -381,3 +381,20 @@ fn batched_deletions_equal_one_by_one() {
         assert_eq!(slot(&batched), slot(&one_by_one), "dart {raw}");
     }
 }
+
+/// The operations' names read back (rule files name them), and each plan's size per
+/// match: extending a cube into a pair adds one cube (24 darts), deleting one of a pair
+/// removes one.
+#[test]
+fn operations_read_their_names_and_plans_count_their_darts() {
+    for op in [Operation::Extend, Operation::Delete, Operation::Replace] {
+        assert_eq!(Operation::parse(op.name()), Some(op));
+    }
+    assert_eq!(Operation::parse("merge"), None);
+    let mut q = Query::new("cube", grid(1, 1, 1), |_| Condition::Any).unwrap();
+    let extend = Plan::new(Operation::Extend, &mut q, &grid(2, 1, 1)).unwrap();
+    assert_eq!((extend.darts_added(), extend.darts_removed()), (24, 0));
+    let mut q = Query::new("pair", grid(2, 1, 1), |_| Condition::Any).unwrap();
+    let delete = Plan::new(Operation::Delete, &mut q, &grid(1, 1, 1)).unwrap();
+    assert_eq!((delete.darts_added(), delete.darts_removed()), (0, 24));
+}
