@@ -175,7 +175,10 @@ fn extend_plan(q: &mut Query, t: &CMap3) -> Result<Plan, ModifyError> {
             let Some(n) = t.beta(d, i + 1) else { continue };
             *link = match (index.get(&n), label_in_t.get(&n)) {
                 (Some(&j), _) => Link::New(j),
-                (None, Some(&l)) if i == 2 => {
+                (None, Some(&l)) => {
+                    // Only across faces: the query's volumes are whole in the target, so
+                    // their β1 and β2 partners are query darts too.
+                    debug_assert_eq!(i + 1, 3, "a new dart β{}-linked to a query dart", i + 1);
                     attached.push(l);
                     Link::Matched(l)
                 }
