@@ -391,6 +391,8 @@ fn operations_read_their_names_and_plans_count_their_darts() {
         assert_eq!(Operation::parse(op.name()), Some(op));
     }
     assert_eq!(Operation::parse("merge"), None);
+    // A rule's action prints as what it does (in `Debug` output of rules and reports).
+    assert_eq!(format!("{:?}", Action::Find), "query");
     let mut q = Query::new("cube", grid(1, 1, 1), |_| Condition::Any).unwrap();
     let extend = Plan::new(Operation::Extend, &mut q, &grid(2, 1, 1)).unwrap();
     assert_eq!((extend.darts_added(), extend.darts_removed()), (24, 0));
