@@ -400,3 +400,36 @@ fn operations_read_their_names_and_plans_count_their_darts() {
     let delete = Plan::new(Operation::Delete, &mut q, &grid(1, 1, 1)).unwrap();
     assert_eq!((delete.darts_added(), delete.darts_removed()), (0, 24));
 }
+
+/// A rule file's face references must exist on the query, and `max_residual` must be
+/// a relative residual (0..1) of a query that has an affine fit; a plain query rule
+/// with one parses into a find rule keeping it.
+#[test]
+fn rule_files_check_face_references_and_residuals() {
+    let dir = common::temp_dir("rule-checks");
+    qmesh::io::write_indexed(&dir.join("one.vtk"), &hex_grid(1, 1, 1), qmesh::io::Format::Vtk, &Default::default())
+        .unwrap();
+    let f = dir.join("r.toml");
+    let query = "[[rule]]\nop = \"query\"\nquery = \"one.vtk\"\n";
+    let rules = parse_rules(&f, &format!("{query}max_residual = 0.5\n")).expect("a query rule with a residual");
+    assert_eq!(rules.len(), 1);
+    assert!(matches!(rules[0].action, Action::Find));
+    assert_eq!(rules[0].query.max_residual, Some(0.5));
+    for (extra, want) in [
+        ("max_residual = 2.0\n", "2 is not a relative residual in 0..1"),
+        ("faces = { \"9\" = \"boundary\" }\n", "has reference 9"),
+    ] {
+        let e = parse_rules(&f, &format!("{query}{extra}")).map(|_| ()).expect_err(extra).to_string();
+        assert!(e.contains(want), "{extra:?}: {e}");
+    }
+}
+
+/// What a delete rule removes is counted per match: two disjoint pairs of a row of
+/// four, one cube (24 darts) removed from each.
+#[test]
+fn a_delete_rule_counts_the_darts_it_removes() {
+    let mut m = grid(4, 1, 1);
+    let r = &run_rules(&mut m, &[rule(Operation::Delete, grid(2, 1, 1), &grid(1, 1, 1))])[0];
+    assert_eq!((r.selected, r.modified, r.darts_removed, r.darts_added), (2, 2, 48, 0));
+    assert_eq!((r.volumes_after, r.darts_after), (2, 48));
+}
