@@ -402,8 +402,8 @@ fn operations_read_their_names_and_plans_count_their_darts() {
 }
 
 /// A rule file's face references must exist on the query, and `max_residual` must be
-/// a relative residual (0..1) of a query that has an affine fit; a plain query rule
-/// with one parses into a find rule keeping it.
+/// a relative residual (0..1) of a query that has an affine fit; a query rule ranked by
+/// hex quality on a hexahedron parses into a find rule keeping both.
 #[test]
 fn rule_files_check_face_references_and_residuals() {
     let dir = common::temp_dir("rule-checks");
@@ -411,10 +411,14 @@ fn rule_files_check_face_references_and_residuals() {
         .unwrap();
     let f = dir.join("r.toml");
     let query = "[[rule]]\nop = \"query\"\nquery = \"one.vtk\"\n";
-    let rules = parse_rules(&f, &format!("{query}max_residual = 0.5\n")).expect("a query rule with a residual");
+    let ranked = "max_residual = 0.5\nstrategy = \"best\"\nmetric = \"hex-quality\"\n";
+    let rules = parse_rules(&f, &format!("{query}{ranked}")).expect("a ranked query rule with a residual");
     assert_eq!(rules.len(), 1);
     assert!(matches!(rules[0].action, Action::Find));
     assert_eq!(rules[0].query.max_residual, Some(0.5));
+    assert!(matches!(rules[0].metric, Some(qmesh::query::Metric::HexQuality)));
+    // Unnamed, a rule is named after its query file.
+    assert_eq!(rules[0].name, "one");
     for (extra, want) in [
         ("max_residual = 2.0\n", "2 is not a relative residual in 0..1"),
         ("faces = { \"9\" = \"boundary\" }\n", "has reference 9"),
