@@ -147,12 +147,17 @@ fn rule_files_run_without_code() {
     assert!(r[0].valid);
 }
 
-#[test]
-fn rule_file_errors_name_the_file_line_and_key() {
-    let dir = common::temp_dir("rule-errors");
+/// The path of a rule file `r.toml` in a fresh folder holding the unit cube `one.vtk`.
+fn rule_file_beside_a_cube(name: &str) -> std::path::PathBuf {
+    let dir = common::temp_dir(name);
     qmesh::io::write_indexed(&dir.join("one.vtk"), &hex_grid(1, 1, 1), qmesh::io::Format::Vtk, &Default::default())
         .unwrap();
-    let f = dir.join("r.toml");
+    dir.join("r.toml")
+}
+
+#[test]
+fn rule_file_errors_name_the_file_line_and_key() {
+    let f = rule_file_beside_a_cube("rule-errors");
     let cases: [(&str, &str); 7] = [
         ("[[rule]]\nop = \"extend\"\nquery = \n", ":3:"),
         ("[[rule]]\nop = \"grow\"\nquery = \"one.vtk\"\n", ":2: `op`: unknown operation 'grow'"),
@@ -406,10 +411,7 @@ fn operations_read_their_names_and_plans_count_their_darts() {
 /// hex quality on a hexahedron parses into a find rule keeping both.
 #[test]
 fn rule_files_check_face_references_and_residuals() {
-    let dir = common::temp_dir("rule-checks");
-    qmesh::io::write_indexed(&dir.join("one.vtk"), &hex_grid(1, 1, 1), qmesh::io::Format::Vtk, &Default::default())
-        .unwrap();
-    let f = dir.join("r.toml");
+    let f = rule_file_beside_a_cube("rule-checks");
     let query = "[[rule]]\nop = \"query\"\nquery = \"one.vtk\"\n";
     let ranked = "max_residual = 0.5\nstrategy = \"best\"\nmetric = \"hex-quality\"\n";
     let rules = parse_rules(&f, &format!("{query}{ranked}")).expect("a ranked query rule with a residual");
