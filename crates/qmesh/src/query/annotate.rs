@@ -78,11 +78,14 @@ impl Annotator {
     /// Checks of earlier labels (case (b)) are accumulated without branching and
     /// tested once per dart: a failed one only means the darts read afterwards are
     /// meaningless, and nothing they annotate survives a failure.
-    #[inline]
     ///
     /// With `prune` (a query's [`prune_table`](super::Automorphisms)), a new label that
     /// an automorphism maps the start to, landing on a dart smaller than the start,
     /// also ends the run: that match is found again, canonically, from that dart.
+    ///
+    /// [`steps`](Self::steps) grows by the symbols checked: all of `ops` when they
+    /// hold, up to the failing one otherwise.
+    #[inline]
     pub(crate) fn run(
         &mut self,
         map: &CMap3,
@@ -97,45 +100,44 @@ impl Annotator {
         }
         let mut row = map.betas_raw(self.matched[k]);
         let mut ok = true;
-        for (n, &op) in ops.iter().enumerate() {
-            let di = row[i];
-            if op < NEW {
-                // (b): the dart already annotated with this label, and no other.
-                ok &= di == self.matched[op as usize];
-            } else if op < FIRST_CONDITION {
-                // (a): a new dart, not ε, not annotated (nor ∅).
-                let label = op - NEW;
-                if !ok
-                    || di == 0
-                    || consumed.is_some_and(|c| c.get(di as usize))
-                    || prune.is_some_and(|p| p[label as usize] && di < self.matched[1])
-                    || !self.table.insert_new(di, label)
-                {
-                    self.steps += n as u64 + 1;
-                    return false;
+        // The index of the symbol at which the word fails, if it does.
+        let failed_at = 'walk: {
+            for (n, &op) in ops.iter().enumerate() {
+                let di = row[i];
+                if op < NEW {
+                    // (b): the dart already annotated with this label, and no other.
+                    ok &= di == self.matched[op as usize];
+                } else if op < FIRST_CONDITION {
+                    // (a): a new dart, not ε, not annotated (nor ∅).
+                    let label = op - NEW;
+                    if !ok
+                        || di == 0
+                        || consumed.is_some_and(|c| c.get(di as usize))
+                        || prune.is_some_and(|p| p[label as usize] && di < self.matched[1])
+                        || !self.table.insert_new(di, label)
+                    {
+                        break 'walk n;
+                    }
+                    self.matched.push(di);
+                } else if !self.condition(consumed, di, op) {
+                    break 'walk n;
                 }
-                self.matched.push(di);
-            } else if !self.condition(consumed, di, op) {
-                self.steps += n as u64 + 1;
-                return false;
+                i += 1;
+                if i == 4 && n + 1 < ops.len() {
+                    if !ok {
+                        break 'walk n;
+                    }
+                    i = 1;
+                    k += 1;
+                    // Breadth-first labels: dart k was reached from an earlier one.
+                    row = map.betas_raw(self.matched[k]);
+                }
             }
-            i += 1;
-            if i == 4 && n + 1 < ops.len() {
-                if !ok {
-                    self.steps += n as u64 + 1;
-                    return false;
-                }
-                i = 1;
-                k += 1;
-                if k >= self.matched.len() {
-                    self.steps += n as u64 + 1;
-                    return false;
-                }
-                row = map.betas_raw(self.matched[k]);
-            }
-        }
-        self.steps += ops.len() as u64;
-        ok
+            self.steps += ops.len() as u64;
+            return ok;
+        };
+        self.steps += failed_at as u64 + 1;
+        false
     }
 
     /// A boundary condition of a 3-free query dart against its input dart βi(d_k).
@@ -150,8 +152,9 @@ impl Annotator {
                     return true;
                 }
                 // (c): reserve an unannotated dart so that no later label lands on it;
-                // a dart already reserved is fine, a labelled one is not.
-                self.table.insert_new(di, RESERVED) || self.table.get(di) == Some(RESERVED)
+                // a labelled one fails. No dart is reserved twice: distinct query darts
+                // match distinct input darts, and β3 is one-to-one.
+                self.table.insert_new(di, RESERVED)
             }
             _ => unreachable!("unknown condition code {op}"),
         }

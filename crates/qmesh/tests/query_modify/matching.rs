@@ -66,23 +66,28 @@ fn hex_with_condition_on_x1(c: Condition) -> Query {
     .unwrap()
 }
 
+/// One hexahedron whose face at coordinate `axis` = 1 is 3-sewn to its face at 0.
+fn periodic_cube(axis: usize) -> CMap3 {
+    let mut m = grid(1, 1, 1);
+    let shift = |p: [f64; 3]| {
+        let mut q = p;
+        q[axis] -= 1.0;
+        q
+    };
+    let f1 = m.darts().find(|&d| m.orbit(d, Orbit::HalfFace).iter().all(|&e| m.point(e)[axis] == 1.0)).unwrap();
+    let (a, b) = (m.point(f1), m.point(m.next(f1)));
+    let f0 = m.darts().find(|&e| m.point(e) == shift(b) && m.point(m.next(e)) == shift(a)).unwrap();
+    m.sew3(f1, f0).unwrap();
+    assert!(m.is_valid().is_empty());
+    m
+}
+
 #[test]
 fn constraint_table_cell_by_cell() {
     use Condition::*;
     let lone = grid(1, 1, 1); // the x = 1 face is 3-free: row "d_i = ε"
     let pair = grid(2, 1, 1); // sewn to a dart outside the match: row "not annotated"
-    let mut periodic = grid(1, 1, 1); // sewn to the x = 0 face of the match: row "labelled"
-    {
-        let m = &periodic;
-        let f1 = m.darts().find(|&d| m.orbit(d, Orbit::HalfFace).iter().all(|&e| m.point(e)[0] == 1.0)).unwrap();
-        let (a, b) = (m.point(f1), m.point(m.next(f1)));
-        let f0 = m
-            .darts()
-            .find(|&e| m.point(e) == [b[0] - 1.0, b[1], b[2]] && m.point(m.next(e)) == [a[0] - 1.0, a[1], a[2]])
-            .unwrap();
-        periodic.sew3(f1, f0).unwrap();
-        assert!(periodic.is_valid().is_empty());
-    }
+    let periodic = periodic_cube(0); // sewn to the x = 0 face of the match: row "labelled"
     let mut consumed = BitSet::with_len(pair.dart_capacity());
     for d in pair.darts().skip(24) {
         consumed.insert(d.idx()); // row ∅: the second hexahedron belongs to a selected match
@@ -121,6 +126,16 @@ fn no_connection_blocks_faces_glued_that_were_apart_in_the_query() {
     assert!(count(&grid(4, 1, 1), &query(pair, Condition::NoConnection), None) > 0);
 }
 
+/// An automorphism that moves a `↔` dart onto a `*` one need not give a match: here
+/// the query's `↔` face may lie on the x or z faces of a cube sewn to itself in y, not
+/// on its y faces (sewn to darts of the match). One set of darts, 16 of its 24 images.
+#[test]
+fn automorphic_images_are_counted_only_where_they_fulfil_the_conditions() {
+    let q = hex_with_condition_on_x1(Condition::NoConnection);
+    let r = find_matches(&periodic_cube(1), &QuerySet::new(vec![q]), &MatchOptions::default());
+    assert_eq!((r.per_query[0], r.with_automorphisms[0]), (1, 16));
+}
+
 #[test]
 fn boundary_condition_blocks_matches_away_from_the_boundary() {
     // Fig. 3 (a): a hexahedron whose faces must all be free matches only a lone one.
@@ -132,6 +147,41 @@ fn boundary_condition_blocks_matches_away_from_the_boundary() {
     let q = query(grid(2, 1, 1), Condition::Boundary);
     assert_eq!(count(&grid(3, 1, 1), &q, None), 0);
     assert_eq!(count(&grid(2, 1, 1), &q, None), 8);
+}
+
+/// The throughput counter: a whole match checks every symbol of the word (three per
+/// query dart), and a failure stops at the symbol that fails.
+#[test]
+fn annotation_counts_the_symbols_it_checks() {
+    let pair = grid(2, 1, 1);
+    let mut a = Annotator::new(24);
+    let any = query(grid(1, 1, 1), Condition::Any);
+    let lone = |m: &CMap3| m.darts().find(|&d| m.is_free(d, 3)).unwrap();
+    assert!(a.annotate(&pair, &any.word, lone(&pair), None));
+    assert_eq!(a.steps(), 3 * 24);
+    // From a dart of the shared face, an all-boundary hexahedron fails at the first
+    // dart's β3 (its β1 and β2 are new labels 2 and 3): three symbols.
+    let boundary = query(grid(1, 1, 1), Condition::Boundary);
+    let shared = pair.darts().find(|&d| !pair.is_free(d, 3)).unwrap();
+    assert!(!a.annotate(&pair, &boundary.word, shared, None));
+    assert_eq!(a.steps(), 3 * 24 + 3);
+    // A pair labelled from a dart of its shared face fails on a lone hexahedron at
+    // that dart's β3, a new label 4 where the input is 3-free: three symbols again.
+    let two = Query::from_start("pair", pair.clone(), shared, |_| Condition::Any).unwrap();
+    assert!(!a.annotate(&grid(1, 1, 1), &two.word, Dart::from_raw(1).unwrap(), None));
+    assert_eq!(a.steps(), 3 * 24 + 6);
+    // The prefix tree's walk counts alike: one lone hexahedron matched from each of
+    // its 24 darts, automorphic copies included.
+    let set = QuerySet::new(vec![any]);
+    let all = MatchOptions { all_automorphisms: true, ..Default::default() };
+    let r = find_matches(&grid(1, 1, 1), &set, &all);
+    assert_eq!(r.with_automorphisms[0], 24);
+    assert_eq!(r.steps, 24 * 3 * 24);
+    // Keeping one match per set of darts, a walk stops as soon as a new label lands
+    // where an automorphic image would start from a smaller dart: fewer symbols.
+    let one = find_matches(&grid(1, 1, 1), &set, &MatchOptions::default());
+    assert_eq!(one.per_query[0], 1);
+    assert!(one.steps < r.steps, "{} symbols with pruning, {} without", one.steps, r.steps);
 }
 
 #[test]
