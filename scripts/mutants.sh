@@ -6,9 +6,9 @@
 #   scripts/mutants.sh core -F sew1   # extra arguments go to cargo-mutants
 #
 # Each mutant is built with the `mutants` profile (the test profile, incremental) and
-# tested by the qmesh crate's fast tests: the unit tests and every integration test but
-# the slow whole-mesh ones (data_roundtrip, replace, the marching-cubes and conformal
-# applications), so a mutant caught here is caught by a subset of `cargo test`.
+# tested by the qmesh crate's fast tests (for the core set: the unit tests and every
+# integration test but the slow whole-mesh ones; for the engine set: the unit tests and
+# the query-modify suite), so a mutant caught here is caught by a subset of `cargo test`.
 # Results: target/mutants-<set>/mutants.out/{caught,missed,timeout,unviable}.txt
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -26,9 +26,14 @@ data="${QMESH_DATA:-../shared/data}"
 [ -d "$data" ] && export QMESH_DATA="$(cd "$data" && pwd)"
 args=()
 for f in "${files[@]}"; do args+=(-f "crates/qmesh/src/$f"); done
-fast_tests=(--lib --test cmap_examples --test signatures --test query_modify --test proptest_ops
+case "$set_name" in
+core) fast_tests=(--lib --test cmap_examples --test signatures --test query_modify --test proptest_ops
     --test proptest_replace --test malformed --test build_extract --test generated_patterns
-    --test apps_subdivide --test apps_tet2hex)
+    --test apps_subdivide --test apps_tet2hex) ;;
+# The engine's own tests: its unit tests and the query-modify suite (matching,
+# modifying, recombination, terrain, properties).
+engine) fast_tests=(--lib --test query_modify) ;;
+esac
 # Given to the build too, so that each mutant links only the test programs it runs.
 for t in "${fast_tests[@]}"; do args+=(--cargo-arg="$t"); done
 # Linking a dozen test programs is most of a mutant's build: mold (Debian package
