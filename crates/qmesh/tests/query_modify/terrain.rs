@@ -95,6 +95,29 @@ fn flatten_top_without_a_top_face_is_refused_and_leaves_a_valid_map() {
     assert!(r.problem.as_deref().unwrap_or("").contains("no top face"), "{:?}", r.problem);
 }
 
+/// Which faces are tops depends on their direction only: a block of voxels a tenth
+/// of a unit wide (faces of area 0.01) is flattened as a unit one is.
+#[test]
+fn flatten_top_finds_the_top_faces_at_any_scale() {
+    for scale in [1.0, 0.1] {
+        let mut mesh = hex_grid(2, 2, 1);
+        mesh.points.iter_mut().for_each(|p| *p = p.map(|c| c * scale));
+        let (q, _) = build_volume_map(&mesh, &BuildOptions::default()).unwrap();
+        let mut m = q.clone();
+        let rule = Rule {
+            action: Action::Apply(builtin_apply("flatten-top").unwrap()),
+            ..Rule::find(Query::new("block", q, |_| Condition::Any).unwrap())
+        };
+        let r = &run_rules(&mut m, &[rule])[0];
+        assert!(r.valid && r.problem.is_none(), "scale {scale}: {:?}", r.problem);
+        assert_eq!(r.modified, 1, "scale {scale}");
+        // One volume whose top is one octagon (the four top quads merged) at z = scale.
+        let top: Vec<_> = m.cells(Orbit::Face).filter(|&d| m.is_free(d, 3) && m.face_degree(d) == 8).collect();
+        assert_eq!(top.len(), 1, "scale {scale}");
+        assert!(m.orbit(top[0], Orbit::HalfFace).iter().all(|&e| (m.point(e)[2] - scale).abs() < 1e-12));
+    }
+}
+
 #[test]
 fn apply_rule_file_errors_name_the_key() {
     let f = example("flatten.toml");
