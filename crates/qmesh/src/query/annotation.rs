@@ -137,4 +137,19 @@ mod tests {
         assert!(a.insert_new(keys[3], 9));
         assert_eq!(a.get(keys[3]), Some(9));
     }
+
+    /// After 2^31 clears the generations start again from 1, and no key stored under
+    /// an old generation 1 comes back.
+    #[test]
+    fn generations_wrap_around_without_stale_keys() {
+        let mut a = Annotation::with_capacity(8);
+        assert!(a.insert_new(7, 3)); // stored under generation 1
+        a.generation = (1 << 31) - 1;
+        assert!(a.insert_new(9, 4));
+        a.clear();
+        assert_eq!(a.generation, 1);
+        assert_eq!((a.get(7), a.get(9)), (None, None));
+        assert!(a.insert_new(7, 5));
+        assert_eq!(a.get(7), Some(5));
+    }
 }
