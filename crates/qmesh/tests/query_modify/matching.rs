@@ -132,6 +132,8 @@ fn no_connection_blocks_faces_glued_that_were_apart_in_the_query() {
 #[test]
 fn automorphic_images_are_counted_only_where_they_fulfil_the_conditions() {
     let q = hex_with_condition_on_x1(Condition::NoConnection);
+    // The bare cube has 24 automorphisms; 4 of them (about the x axis) keep `↔` on x = 1.
+    assert_eq!((q.automorphisms.topological_count(), q.automorphisms.count()), (24, 4));
     let r = find_matches(&periodic_cube(1), &QuerySet::new(vec![q]), &MatchOptions::default());
     assert_eq!((r.per_query[0], r.with_automorphisms[0]), (1, 16));
 }
