@@ -416,6 +416,37 @@ fn residual_threshold_rejects_distorted_copies_and_orientation_follows_the_query
     }
 }
 
+/// Oriented by geometry, a match is kept as the automorphic image that fits the query
+/// best: on a cube with one raised corner, only one image is an affine copy. The
+/// input is the same cube (moved, stretched) with its nodes listed from another
+/// corner, so its smallest dart, where the match is found, is elsewhere.
+#[test]
+fn geometric_orientation_keeps_the_image_that_fits_best() {
+    let mut mesh = hex_grid(1, 1, 1);
+    mesh.points.iter_mut().filter(|p| **p == [1.0, 1.0, 1.0]).for_each(|p| p[2] = 1.5);
+    let q_map = build_volume_map(&mesh, &BuildOptions::default()).unwrap().0;
+    let mut q = query(q_map.clone(), Condition::Any);
+    q.orient_by_geometry = true;
+    // Stretched, then turned by 90° about z: the copy that fits exactly is then not
+    // the one closest to the query's orientation.
+    let stretch = |p: [f64; 3]| [2.0 * p[0] + 5.0, p[1] - 1.0, 3.0 * p[2]];
+    let turn = |p: [f64; 3]| [-p[1], p[0], p[2]];
+    let affines: [&dyn Fn([f64; 3]) -> [f64; 3]; 2] = [&stretch, &turn];
+    for (first, affine) in (0..4).flat_map(|f| affines.iter().map(move |a| (f, a))) {
+        let nodes: Vec<u32> = mesh.cell(0).1.to_vec();
+        let turned: Vec<u32> = (0..8).map(|i| nodes[(i + first) % 4 + if i < 4 { 0 } else { 4 }]).collect();
+        let mut input = qmesh::build::IndexedMesh::new();
+        input.points = mesh.points.iter().map(|&p| affine(p)).collect();
+        input.push_cell(qmesh::build::CellKind::Hex, &turned, None);
+        let m = build_volume_map(&input, &BuildOptions::default()).unwrap().0;
+        let r = find_matches(&m, &QuerySet::new(vec![q.clone()]), &MatchOptions::default());
+        assert_eq!(r.matches.len(), 1);
+        let (s, d1) = (r.matches[0].start, q.labelling.darts[0]);
+        assert_eq!(m.point(s), affine(q_map.point(d1)), "listed from corner {first}");
+        assert_eq!(m.point(m.next(s)), affine(q_map.point(q_map.next(d1))), "listed from corner {first}");
+    }
+}
+
 #[test]
 fn lazy_random_selection_is_seeded_separated_and_stops_at_max() {
     use qmesh::query::{Separation, select_random_lazily};
