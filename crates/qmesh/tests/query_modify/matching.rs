@@ -134,8 +134,17 @@ fn automorphic_images_are_counted_only_where_they_fulfil_the_conditions() {
     let q = hex_with_condition_on_x1(Condition::NoConnection);
     // The bare cube has 24 automorphisms; 4 of them (about the x axis) keep `↔` on x = 1.
     assert_eq!((q.automorphisms.topological_count(), q.automorphisms.count()), (24, 4));
-    let r = find_matches(&periodic_cube(1), &QuerySet::new(vec![q]), &MatchOptions::default());
+    let r = find_matches(&periodic_cube(1), &QuerySet::new(vec![q.clone()]), &MatchOptions::default());
     assert_eq!((r.per_query[0], r.with_automorphisms[0]), (1, 16));
+    // Oriented by geometry on a cube sewn to itself in x, the image that fits best
+    // (the identity, `↔` on the sewn x = 1 face) is not a match: the one kept is.
+    let mut oriented = q;
+    oriented.orient_by_geometry = true;
+    let m = periodic_cube(0);
+    let r = find_matches(&m, &QuerySet::new(vec![oriented.clone()]), &MatchOptions::default());
+    assert_eq!(r.matches.len(), 1);
+    let mut a = Annotator::new(24);
+    assert!(a.annotate(&m, &oriented.word, r.matches[0].start, None), "the kept image is not a match");
 }
 
 #[test]
