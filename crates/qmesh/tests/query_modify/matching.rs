@@ -454,6 +454,23 @@ fn geometric_orientation_keeps_the_image_that_fits_best() {
         assert_eq!(m.point(s), affine(q_map.point(d1)), "listed from corner {first}");
         assert_eq!(m.point(m.next(s)), affine(q_map.point(q_map.next(d1))), "listed from corner {first}");
     }
+    // A plain cube: all 24 images fit exactly, and the tie goes to the orientation
+    // closest to the query's (here the identity).
+    let plain = grid(1, 1, 1);
+    let mut q = query(plain.clone(), Condition::Any);
+    q.orient_by_geometry = true;
+    for first in 0..4 {
+        let mesh = hex_grid(1, 1, 1);
+        let nodes: Vec<u32> = mesh.cell(0).1.to_vec();
+        let turned: Vec<u32> = (0..8).map(|i| nodes[(i + first) % 4 + if i < 4 { 0 } else { 4 }]).collect();
+        let mut input = qmesh::build::IndexedMesh::new();
+        input.points = mesh.points.clone();
+        input.push_cell(qmesh::build::CellKind::Hex, &turned, None);
+        let m = build_volume_map(&input, &BuildOptions::default()).unwrap().0;
+        let r = find_matches(&m, &QuerySet::new(vec![q.clone()]), &MatchOptions::default());
+        let (s, d1) = (r.matches[0].start, q.labelling.darts[0]);
+        assert_eq!((m.point(s), m.point(m.next(s))), (plain.point(d1), plain.point(plain.next(d1))), "corner {first}");
+    }
 }
 
 #[test]
