@@ -425,6 +425,17 @@ fn residual_threshold_rejects_distorted_copies_and_orientation_follows_the_query
     }
 }
 
+/// The map of the one hexahedron of `mesh`, its nodes listed from bottom corner
+/// `first` (the same cell, darts numbered from elsewhere), its points moved by `f`.
+fn hex_listed_from(mesh: &qmesh::build::IndexedMesh, first: usize, f: impl Fn([f64; 3]) -> [f64; 3]) -> CMap3 {
+    let nodes: Vec<u32> = mesh.cell(0).1.to_vec();
+    let turned: Vec<u32> = (0..8).map(|i| nodes[(i + first) % 4 + if i < 4 { 0 } else { 4 }]).collect();
+    let mut input = qmesh::build::IndexedMesh::new();
+    input.points = mesh.points.iter().map(|&p| f(p)).collect();
+    input.push_cell(qmesh::build::CellKind::Hex, &turned, None);
+    build_volume_map(&input, &BuildOptions::default()).unwrap().0
+}
+
 /// Oriented by geometry, a match is kept as the automorphic image that fits the query
 /// best: on a cube with one raised corner, only one image is an affine copy. The
 /// input is the same cube (moved, stretched) with its nodes listed from another
@@ -442,12 +453,7 @@ fn geometric_orientation_keeps_the_image_that_fits_best() {
     let turn = |p: [f64; 3]| [-p[1], p[0], p[2]];
     let affines: [&dyn Fn([f64; 3]) -> [f64; 3]; 2] = [&stretch, &turn];
     for (first, affine) in (0..4).flat_map(|f| affines.iter().map(move |a| (f, a))) {
-        let nodes: Vec<u32> = mesh.cell(0).1.to_vec();
-        let turned: Vec<u32> = (0..8).map(|i| nodes[(i + first) % 4 + if i < 4 { 0 } else { 4 }]).collect();
-        let mut input = qmesh::build::IndexedMesh::new();
-        input.points = mesh.points.iter().map(|&p| affine(p)).collect();
-        input.push_cell(qmesh::build::CellKind::Hex, &turned, None);
-        let m = build_volume_map(&input, &BuildOptions::default()).unwrap().0;
+        let m = hex_listed_from(&mesh, first, affine);
         let r = find_matches(&m, &QuerySet::new(vec![q.clone()]), &MatchOptions::default());
         assert_eq!(r.matches.len(), 1);
         let (s, d1) = (r.matches[0].start, q.labelling.darts[0]);
@@ -460,13 +466,7 @@ fn geometric_orientation_keeps_the_image_that_fits_best() {
     let mut q = query(plain.clone(), Condition::Any);
     q.orient_by_geometry = true;
     for first in 0..4 {
-        let mesh = hex_grid(1, 1, 1);
-        let nodes: Vec<u32> = mesh.cell(0).1.to_vec();
-        let turned: Vec<u32> = (0..8).map(|i| nodes[(i + first) % 4 + if i < 4 { 0 } else { 4 }]).collect();
-        let mut input = qmesh::build::IndexedMesh::new();
-        input.points = mesh.points.clone();
-        input.push_cell(qmesh::build::CellKind::Hex, &turned, None);
-        let m = build_volume_map(&input, &BuildOptions::default()).unwrap().0;
+        let m = hex_listed_from(&hex_grid(1, 1, 1), first, |p| p);
         let r = find_matches(&m, &QuerySet::new(vec![q.clone()]), &MatchOptions::default());
         let (s, d1) = (r.matches[0].start, q.labelling.darts[0]);
         assert_eq!((m.point(s), m.point(m.next(s))), (plain.point(d1), plain.point(plain.next(d1))), "corner {first}");

@@ -76,6 +76,18 @@ fn merge_makes_one_volume_of_a_block_through_its_inner_edges() {
     assert!(merged.is_some(), "no volume of 24 quadrilaterals");
 }
 
+/// The map of `mesh` after flatten-top with itself as the query, and the rule's report.
+fn flatten_top_of_itself(mesh: &qmesh::build::IndexedMesh) -> (CMap3, qmesh::modify::RuleReport) {
+    let (q, _) = build_volume_map(mesh, &BuildOptions::default()).unwrap();
+    let mut m = q.clone();
+    let rule = Rule {
+        action: Action::Apply(builtin_apply("flatten-top").unwrap()),
+        ..Rule::find(Query::new("itself", q, |_| Condition::Any).unwrap())
+    };
+    let r = run_rules(&mut m, &[rule]).remove(0);
+    (m, r)
+}
+
 #[test]
 fn flatten_top_without_a_top_face_is_refused_and_leaves_a_valid_map() {
     // A tetrahedron standing on a face: its three other faces lean 70.5° from +z.
@@ -83,13 +95,7 @@ fn flatten_top_without_a_top_face_is_refused_and_leaves_a_valid_map() {
     let h = (2.0f64 / 3.0).sqrt();
     mesh.points = vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.5, 0.75f64.sqrt(), 0.0], [0.5, 0.75f64.sqrt() / 3.0, h]];
     mesh.push_cell(qmesh::build::CellKind::Tet, &[0, 1, 2, 3], None);
-    let (q, _) = build_volume_map(&mesh, &BuildOptions::default()).unwrap();
-    let mut m = q.clone();
-    let rule = Rule {
-        action: Action::Apply(builtin_apply("flatten-top").unwrap()),
-        ..Rule::find(Query::new("tet", q, |_| Condition::Any).unwrap())
-    };
-    let r = &run_rules(&mut m, &[rule])[0];
+    let (_, r) = flatten_top_of_itself(&mesh);
     assert_eq!((r.selected, r.modified), (1, 0));
     assert!(r.valid);
     assert!(r.problem.as_deref().unwrap_or("").contains("no top face"), "{:?}", r.problem);
@@ -102,13 +108,7 @@ fn flatten_top_finds_the_top_faces_at_any_scale() {
     for scale in [1.0, 0.1] {
         let mut mesh = hex_grid(2, 2, 1);
         mesh.points.iter_mut().for_each(|p| *p = p.map(|c| c * scale));
-        let (q, _) = build_volume_map(&mesh, &BuildOptions::default()).unwrap();
-        let mut m = q.clone();
-        let rule = Rule {
-            action: Action::Apply(builtin_apply("flatten-top").unwrap()),
-            ..Rule::find(Query::new("block", q, |_| Condition::Any).unwrap())
-        };
-        let r = &run_rules(&mut m, &[rule])[0];
+        let (m, r) = flatten_top_of_itself(&mesh);
         assert!(r.valid && r.problem.is_none(), "scale {scale}: {:?}", r.problem);
         assert_eq!(r.modified, 1, "scale {scale}");
         // One volume whose top is one octagon (the four top quads merged) at z = scale.
