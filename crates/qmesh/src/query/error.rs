@@ -25,19 +25,25 @@ impl QueryError {
     }
 }
 
-/// "the face with vertices 3-7-8 at (x, y, z)": the vertex ids around the half-face of
-/// `d` (followed while β1 is sewn) and its first vertex's position.
+/// At most this many vertices are listed in a face's description.
+const LISTED_VERTICES: usize = 64;
+
+/// "the face with vertices 3-7-8 (first at x, y, z)": the vertex ids around the
+/// half-face of `d` (followed while β1 is sewn, "…" after the first
+/// [`LISTED_VERTICES`]) and its first vertex's position.
 pub(crate) fn describe_face(map: &CMap3, d: Dart) -> String {
-    let mut ids = vec![map.vertex_of(d)];
+    let mut ids = vec![map.vertex_of(d).to_string()];
     let mut x = map.beta(d, 1);
-    while let Some(y) = x {
-        if y == d || ids.len() > 64 {
+    while let Some(y) = x
+        && y != d
+    {
+        if ids.len() == LISTED_VERTICES {
+            ids.push("…".into());
             break;
         }
-        ids.push(map.vertex_of(y));
+        ids.push(map.vertex_of(y).to_string());
         x = map.beta(y, 1);
     }
     let p = map.point(d);
-    let list: Vec<String> = ids.iter().map(|v| v.to_string()).collect();
-    format!("the face with vertices {} (first at {:.3}, {:.3}, {:.3})", list.join("-"), p[0], p[1], p[2])
+    format!("the face with vertices {} (first at {:.3}, {:.3}, {:.3})", ids.join("-"), p[0], p[1], p[2])
 }

@@ -28,9 +28,10 @@ impl AffineFit {
     }
 
     /// (relative residual, ‖A − I‖²) of the least-squares affine map A·q + t sending
-    /// the query points to the positions `position(label)`. The residual is divided by
-    /// the spread of those positions around their centroid: 0 for an affine copy of
-    /// the query, at most 1, whatever the units.
+    /// the query points to the positions `position(label)`. The relative residual is
+    /// the root-mean-square distance of the positions from the fit over their
+    /// root-mean-square distance from their centroid: 0 for an affine copy of the
+    /// query, 0.01 for one 1 % off, at most 1, whatever the units.
     #[allow(clippy::needless_range_loop)] // matrix products read best with indices
     pub(crate) fn score(&self, position: impl Fn(u32) -> [f64; 3]) -> (f64, f64) {
         let p: Vec<[f64; 3]> = self.labels.iter().map(|&l| position(l)).collect();
@@ -49,7 +50,7 @@ impl AffineFit {
                 m[i][j] = (0..4).map(|k| b[i][k] * self.inverse[k][j]).sum();
             }
         }
-        let residual = self
+        let residual: f64 = self
             .points
             .iter()
             .zip(&p)
@@ -59,8 +60,18 @@ impl AffineFit {
             .sum();
         let turn =
             (0..3).map(|i| (0..3).map(|j| (m[i][j] - if i == j { 1.0 } else { 0.0 }).powi(2)).sum::<f64>()).sum();
-        (residual, turn)
+        // The constant map to the centroid leaves exactly the spread as its residual,
+        // so the least-squares residual is at most the spread.
+        let spread = spread_around_centroid(&p);
+        (if spread > 0.0 { (residual / spread).sqrt() } else { 0.0 }, turn)
     }
+}
+
+/// Σ ‖p − c‖² over the points, c their centroid.
+fn spread_around_centroid(points: &[[f64; 3]]) -> f64 {
+    let n = points.len() as f64;
+    let c: [f64; 3] = std::array::from_fn(|i| points.iter().map(|p| p[i]).sum::<f64>() / n);
+    points.iter().map(|p| (0..3).map(|i| (p[i] - c[i]).powi(2)).sum::<f64>()).sum()
 }
 
 /// Gauss–Jordan inverse with partial pivoting; None when singular.
@@ -115,5 +126,31 @@ mod tests {
         });
         assert!(r < 1e-18 && (t - 4.0).abs() < 1e-9, "{r} {t}");
         assert!(AffineFit::new(vec![1, 2, 3], vec![[0., 0., 0.], [1., 0., 0.], [0., 1., 0.]]).is_none());
+    }
+
+    /// The residual is relative to the spread of the matched positions: a distorted
+    /// copy scores the same in millimetres as in metres, above 0 and at most 1.
+    #[test]
+    fn the_residual_is_relative_whatever_the_units() {
+        let q: Vec<[f64; 3]> = vec![[0., 0., 0.], [1., 0., 0.], [0., 1., 0.], [0., 0., 1.], [1., 1., 1.]];
+        let fit = AffineFit::new((1..=5).collect(), q.clone()).unwrap();
+        let raised = |scale: f64| {
+            let q = &q;
+            move |l: u32| {
+                let p = q[l as usize - 1];
+                let lift = if l == 5 { 0.5 } else { 0.0 };
+                [scale * p[0], scale * p[1], scale * (p[2] + lift)]
+            }
+        };
+        let (r1, _) = fit.score(raised(1.0));
+        let (r1000, _) = fit.score(raised(1000.0));
+        assert!(r1 > 1e-3 && r1 < 1.0, "{r1}");
+        assert!((r1000 - r1).abs() < 1e-12, "{r1} in metres, {r1000} in millimetres");
+        // All five positions at one point: nothing to fit against, no residual.
+        assert_eq!(fit.score(|_| [2.0, 3.0, 4.0]).0, 0.0);
+        // Scattered positions with no affine relation to the query stay at most 1.
+        let far = [[0., 0., 0.], [0., 0., 9.], [5., 0., 0.], [0., 7., 0.], [-3., -3., -3.]];
+        let (r, _) = fit.score(|l| far[l as usize - 1]);
+        assert!(r > 0.0 && r <= 1.0, "{r}");
     }
 }

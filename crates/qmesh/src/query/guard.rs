@@ -90,15 +90,107 @@ impl CornerGuards {
         let (a, b) = self.node_checks[node];
         for c in &self.checks[a as usize..b as usize] {
             let killed = &self.killed[c.first as usize..(c.first + c.count) as usize];
-            if killed.iter().all(|&q| alive[q as usize / 64] >> (q % 64) & 1 == 0) {
+            if !killed.iter().any(|&q| is_alive(alive, q)) {
                 continue;
             }
             let p = c.labels.map(|l| map.point(Dart::from_raw(matched[l as usize]).expect("matched darts are not ε")));
             if corner_jacobian(p[0], p[1], p[2], p[3]) <= threshold {
-                killed.iter().for_each(|&q| alive[q as usize / 64] &= !(1 << (q % 64)));
+                killed.iter().for_each(|&q| kill(alive, q));
             }
         }
         let sub = &self.subtree[node * self.words..(node + 1) * self.words];
         sub.iter().zip(alive.iter()).any(|(s, a)| s & a != 0)
+    }
+}
+
+/// Whether query `q` is still alive in the bitset `alive` (one bit per query).
+#[inline]
+pub(crate) fn is_alive(alive: &[u64], q: u32) -> bool {
+    alive[q as usize / 64] >> (q % 64) & 1 == 1
+}
+
+/// Clears query `q`'s bit in `alive`.
+#[inline]
+fn kill(alive: &mut [u64], q: u32) {
+    alive[q as usize / 64] &= !(1 << (q % 64));
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::build::{BuildOptions, build_volume_map};
+    use crate::query::{Annotator, Condition};
+
+    #[test]
+    fn one_bit_per_query_across_words() {
+        for q in 0..192 {
+            let mut only = [0u64; 3];
+            only[q as usize / 64] = 1 << (q % 64);
+            assert!((0..192).all(|r| is_alive(&only, r) == (r == q)), "query {q}");
+            let mut all = [u64::MAX; 3];
+            kill(&mut all, q);
+            assert!((0..192).all(|r| is_alive(&all, r) != (r == q)), "query {q}");
+        }
+    }
+
+    /// 70 cube queries with `*` conditions (0..70) and 70 with `ε` (70..140): the same
+    /// labels and corners, words that part at the first condition, three bitset words.
+    fn two_groups() -> (Vec<Query>, PrefixTree, CornerGuards) {
+        let cube = build_volume_map(&crate::generate::hex_grid(1, 1, 1), &BuildOptions::default()).unwrap().0;
+        let any = Query::new("any", cube.clone(), |_| Condition::Any).unwrap();
+        let boundary = Query::new("boundary", cube, |_| Condition::Boundary).unwrap();
+        let queries: Vec<Query> = (0..140).map(|i| if i < 70 { any.clone() } else { boundary.clone() }).collect();
+        let tree = PrefixTree::new(queries.iter().map(|q| &q.word));
+        let guards = CornerGuards::new(&tree, &queries);
+        (queries, tree, guards)
+    }
+
+    /// The nodes from the root to the one where query `q` ends.
+    fn path_to(tree: &PrefixTree, q: u32) -> Vec<usize> {
+        let mut path = vec![0];
+        while !tree.terminals_of(*path.last().unwrap()).contains(&q) {
+            let below = |n: u32| {
+                let mut stack = vec![n as usize];
+                std::iter::from_fn(|| {
+                    let n = stack.pop()?;
+                    stack.extend(tree.children_of(n).iter().map(|&c| c as usize));
+                    Some(n)
+                })
+                .any(|n| tree.terminals_of(n).contains(&q))
+            };
+            let next = tree.children_of(*path.last().unwrap()).iter().find(|&&c| below(c)).expect("q ends below");
+            path.push(*next as usize);
+        }
+        path
+    }
+
+    #[test]
+    fn corners_at_or_below_the_threshold_drop_their_queries_and_stop_the_walk() {
+        let (queries, tree, g) = two_groups();
+        assert_eq!(g.words, 3);
+        let map = build_volume_map(&crate::generate::hex_grid(1, 1, 1), &BuildOptions::default()).unwrap().0;
+        let mut a = Annotator::new(24);
+        assert!(a.annotate(&map, &queries[0].word, map.darts().next().unwrap(), None));
+        let path = path_to(&tree, 0);
+        assert!(path.len() >= 2, "{path:?}");
+        // A perfect cube's corners have a Jacobian of exactly 1: at a threshold of 1
+        // every corner fails. Walking down to where the `*` queries end, some node
+        // drops them all and says that nothing is left below it.
+        let mut alive = [u64::MAX; 3];
+        let stop = path.iter().position(|&n| !g.apply(n, &map, &a.matched, 1.0, &mut alive));
+        assert!(stop.is_some(), "the walk went on to the end");
+        assert!((0..70).all(|q| !is_alive(&alive, q)));
+        // Below the Jacobian of every corner, nothing is dropped.
+        let mut alive = [u64::MAX; 3];
+        assert!(path.iter().all(|&n| g.apply(n, &map, &a.matched, 0.5, &mut alive)));
+        assert_eq!(alive, [u64::MAX; 3]);
+        // Where only `ε` queries are alive, the `*` queries' own node has nothing left
+        // below it, whatever the geometry.
+        let mut boundary_only = [0u64; 3];
+        (70..140).for_each(|q| boundary_only[q as usize / 64] |= 1 << (q % 64));
+        let end = *path.last().unwrap();
+        assert!(!g.apply(end, &map, &a.matched, 0.5, &mut boundary_only.clone()));
+        let mut first_only = [1u64, 0, 0];
+        assert!(g.apply(end, &map, &a.matched, 0.5, &mut first_only));
     }
 }

@@ -143,6 +143,10 @@ pub struct MatchReport {
     pub seconds: f64,
 }
 
+/// Relative fit residuals up to this much above `max_residual` are rounding: an exact
+/// copy of the query passes a limit of 0.
+const RESIDUAL_ROUNDING: f64 = 1e-12;
+
 /// Start darts per parallel task: large enough to amortise scheduling, small enough
 /// to balance two to dozens of threads.
 const CHUNK: usize = 4096;
@@ -249,7 +253,7 @@ pub(crate) fn matches_at(
             if let Some(fit) = (query.orient_by_geometry || query.max_residual.is_some()).then(|| query.fit()).flatten()
             {
                 let (s, residual) = query.automorphisms.best_image(map, &query.word, fit, a);
-                if query.max_residual.is_some_and(|limit| residual > limit) {
+                if query.max_residual.is_some_and(|limit| residual > limit + RESIDUAL_ROUNDING) {
                     return;
                 }
                 if query.orient_by_geometry && !opts.all_automorphisms {

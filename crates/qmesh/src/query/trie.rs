@@ -4,7 +4,7 @@
 //! its parent, so every word is checked exactly as Algorithm 1 alone would.
 
 use super::annotate::Annotator;
-use super::guard::CornerGuards;
+use super::guard::{CornerGuards, is_alive};
 use super::word::QueryWord;
 use crate::cmap::{BitSet, CMap3};
 
@@ -188,7 +188,7 @@ impl PrefixTree {
                 }
             }
             for &q in &self.terminals[c.t_first as usize..(c.t_first + c.t_count) as usize] {
-                if w == 0 || alive[level * w + q as usize / 64] >> (q % 64) & 1 == 1 {
+                if w == 0 || is_alive(&alive[level * w..], q) {
                     found(q, annot);
                 }
             }

@@ -9,5 +9,6 @@ mod common;
 mod matching;
 mod modifying;
 mod properties;
+mod queries;
 mod recombination;
 mod terrain;

@@ -188,6 +188,10 @@ fn annotation_counts_the_symbols_it_checks() {
     let r = find_matches(&grid(1, 1, 1), &set, &all);
     assert_eq!(r.with_automorphisms[0], 24);
     assert_eq!(r.steps, 24 * 3 * 24);
+    // Over many chunks of start darts taken by one thread, each chunk adds its own.
+    let big = grid(10, 10, 10);
+    let one_thread = rayon::ThreadPoolBuilder::new().num_threads(1).build().unwrap();
+    assert_eq!(one_thread.install(|| find_matches(&big, &set, &all)).steps, 24_000 * 3 * 24);
     // Keeping one match per set of darts, a walk stops as soon as a new label lands
     // where an automorphic image would start from a smaller dart: fewer symbols.
     let one = find_matches(&grid(1, 1, 1), &set, &MatchOptions::default());
@@ -222,6 +226,17 @@ fn queries_must_be_connected_and_closed() {
     let e = Query::new("open", open, |_| Condition::Any).unwrap_err();
     assert!(matches!(e, QueryError::Free { beta: 2, .. }), "{e}");
     assert!(e.to_string().contains("2-free") && e.to_string().contains("face with vertices"), "{e}");
+    assert!(e.to_string().contains("(the face with vertices 0-1-2 (first at 0.000, 0.000, 0.000))"), "{e}");
+    // A long face is listed up to its 64th vertex, then "…".
+    for (n, head, tail) in [(64, "vertices 0-1-2-3-", "-62-63 (first"), (70, "vertices 0-1-2-3-", "-62-63-… (first")]
+    {
+        let mut open = CMap3::new();
+        open.set_dimension(2);
+        let v: Vec<u32> = (0..n).map(|i| open.add_vertex([(i as f64).cos(), (i as f64).sin(), 0.0])).collect();
+        open.make_polygon(&v);
+        let e = Query::new("open", open, |_| Condition::Any).unwrap_err().to_string();
+        assert!(e.contains(head) && e.contains(tail), "{n}-gon: {e}");
+    }
 }
 
 #[test]
@@ -332,6 +347,7 @@ fn match_volumes_are_those_of_the_darts_and_select_by_volumes_equals_select() {
     let opts = MatchOptions { metric: Some(&metric), volume_of: Some(&volume_of), ..Default::default() };
     let found = find_matches(&g, &set, &opts);
     assert_eq!(found.volumes.len(), found.matches.len());
+    assert!(!found.volumes.is_empty());
     assert!(found.per_query.iter().all(|&n| n > 10), "{:?}", found.per_query);
     let mut a = set.annotator();
     for (i, m) in found.matches.iter().enumerate() {
@@ -411,8 +427,18 @@ fn residual_threshold_rejects_distorted_copies_and_orientation_follows_the_query
     let all = find_matches(&g, &QuerySet::new(vec![q.clone()]), &MatchOptions::default());
     assert_eq!(all.per_query[0], 2);
     q.max_residual = Some(1e-6);
-    let strict = find_matches(&g, &QuerySet::new(vec![q.clone()]), &MatchOptions::default());
+    let set = QuerySet::new(vec![q.clone()]);
+    let strict = find_matches(&g, &set, &MatchOptions::default());
     assert_eq!(strict.per_query[0], 1);
+    // The copy kept is the undistorted pair (x from 0 to 2), found from the same dart
+    // as without the threshold: `max_residual` alone does not reorient matches.
+    let darts = set.darts_of(&g, &strict.matches[0], &mut set.annotator());
+    assert!(darts.iter().all(|&d| g.point(d)[0] <= 2.0), "the sheared pair was kept");
+    assert!(all.matches.iter().any(|m| m.start == strict.matches[0].start));
+    // A limit of 0 keeps exact copies: their residual is rounding only.
+    q.max_residual = Some(0.0);
+    let exact = find_matches(&grid(3, 1, 1), &QuerySet::new(vec![q.clone()]), &MatchOptions::default());
+    assert_eq!(exact.per_query[0], 2);
     // Geometric orientation: the kept copy's first dart is where the query's is.
     q.max_residual = None;
     q.orient_by_geometry = true;
@@ -452,25 +478,45 @@ fn geometric_orientation_keeps_the_image_that_fits_best() {
     let stretch = |p: [f64; 3]| [2.0 * p[0] + 5.0, p[1] - 1.0, 3.0 * p[2]];
     let turn = |p: [f64; 3]| [-p[1], p[0], p[2]];
     let affines: [&dyn Fn([f64; 3]) -> [f64; 3]; 2] = [&stretch, &turn];
+    // With `ε` on the x = 1 face, the quarter turns about z do not keep the query's
+    // conditions, yet on a lone cube (every face free) their images are matches too,
+    // and one of them is the exact copy.
+    let on_x1 = |d: Dart| q_map.orbit(d, Orbit::HalfFace).iter().all(|&e| q_map.point(e)[0] == 1.0);
+    let mut q_eps =
+        Query::new("raised", q_map.clone(), |d| if on_x1(d) { Condition::Boundary } else { Condition::Any }).unwrap();
+    q_eps.orient_by_geometry = true;
+    assert_eq!((q_eps.automorphisms.topological_count(), q_eps.automorphisms.count()), (24, 4));
     for (first, affine) in (0..4).flat_map(|f| affines.iter().map(move |a| (f, a))) {
         let m = hex_listed_from(&mesh, first, affine);
-        let r = find_matches(&m, &QuerySet::new(vec![q.clone()]), &MatchOptions::default());
-        assert_eq!(r.matches.len(), 1);
-        let (s, d1) = (r.matches[0].start, q.labelling.darts[0]);
-        assert_eq!(m.point(s), affine(q_map.point(d1)), "listed from corner {first}");
-        assert_eq!(m.point(m.next(s)), affine(q_map.point(q_map.next(d1))), "listed from corner {first}");
+        for q in [&q, &q_eps] {
+            let r = find_matches(&m, &QuerySet::new(vec![q.clone()]), &MatchOptions::default());
+            assert_eq!(r.matches.len(), 1);
+            let (s, d1) = (r.matches[0].start, q.labelling.darts[0]);
+            assert_eq!(m.point(s), affine(q_map.point(d1)), "{}: listed from corner {first}", q.name);
+            assert_eq!(m.point(m.next(s)), affine(q_map.point(q_map.next(d1))), "{}: corner {first}", q.name);
+        }
     }
     // A plain cube: all 24 images fit exactly, and the tie goes to the orientation
     // closest to the query's (here the identity).
     let plain = grid(1, 1, 1);
     let mut q = query(plain.clone(), Condition::Any);
     q.orient_by_geometry = true;
+    // `max_residual` alone keeps the match where it was found (the smallest dart).
+    let mut unoriented = q.clone();
+    unoriented.orient_by_geometry = false;
+    let mut residual_only = unoriented.clone();
+    residual_only.max_residual = Some(1.0);
+    let mut moved = 0;
     for first in 0..4 {
         let m = hex_listed_from(&hex_grid(1, 1, 1), first, |p| p);
-        let r = find_matches(&m, &QuerySet::new(vec![q.clone()]), &MatchOptions::default());
-        let (s, d1) = (r.matches[0].start, q.labelling.darts[0]);
+        let start_with = |q: &Query| find_matches(&m, &QuerySet::new(vec![q.clone()]), &MatchOptions::default());
+        let (s, d1) = (start_with(&q).matches[0].start, q.labelling.darts[0]);
         assert_eq!((m.point(s), m.point(m.next(s))), (plain.point(d1), plain.point(plain.next(d1))), "corner {first}");
+        let found_at = start_with(&unoriented).matches[0].start;
+        assert_eq!(start_with(&residual_only).matches[0].start, found_at, "corner {first}");
+        moved += usize::from(s != found_at);
     }
+    assert!(moved > 0, "orienting by geometry never moved a match: the check above is vacuous");
 }
 
 #[test]

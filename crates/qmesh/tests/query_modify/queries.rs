@@ -1,0 +1,93 @@
+//! What a compiled query knows about itself: its size limit, its reach, its corners,
+//! whether it has an affine fit, and the metrics that score its matches.
+
+use qmesh::build::{BuildOptions, build_volume_map};
+use qmesh::cmap::{CMap3, Dart};
+use qmesh::generate::hex_grid;
+use qmesh::query::{Annotator, Condition, MAX_QUERY_DARTS, Metric, Query, QueryError};
+
+fn grid(x: usize, y: usize, z: usize) -> CMap3 {
+    build_volume_map(&hex_grid(x, y, z), &BuildOptions::default()).unwrap().0
+}
+
+fn query(map: CMap3) -> Query {
+    Query::new("q", map, |_| Condition::Any).unwrap()
+}
+
+/// An open polygon of `n` darts (1-sewn only): not a query, but sized to the dart.
+fn polygon(n: usize) -> CMap3 {
+    let mut m = CMap3::new();
+    m.set_dimension(2);
+    let v: Vec<u32> = (0..n).map(|i| m.add_vertex([(i as f64).cos(), (i as f64).sin(), 0.0])).collect();
+    m.make_polygon(&v);
+    m
+}
+
+#[test]
+fn the_size_limit_is_exactly_max_query_darts() {
+    let at_limit = Query::new("big", polygon(MAX_QUERY_DARTS), |_| Condition::Any).unwrap_err();
+    assert!(matches!(at_limit, QueryError::Free { beta: 2, .. }), "{at_limit}");
+    let over = Query::new("big", polygon(MAX_QUERY_DARTS + 1), |_| Condition::Any).unwrap_err();
+    assert_eq!(over, QueryError::TooLarge(MAX_QUERY_DARTS + 1));
+    assert!(over.to_string().contains(&format!("at most {MAX_QUERY_DARTS}")), "{over}");
+}
+
+#[test]
+fn reach_counts_faces_crossed_from_the_start_volume() {
+    // A row of three cells: from an end cell the far end is two faces away, from the
+    // middle one face.
+    let row = grid(3, 1, 1);
+    let end = row.darts().find(|&d| row.point(d)[0] == 0.0).unwrap();
+    let middle = row.darts().find(|&d| row.point(d)[0] == 1.0 && row.point(row.next(d))[0] == 2.0).unwrap();
+    let from = |d: Dart| Query::from_start("row", row.clone(), d, |_| Condition::Any).unwrap().reach();
+    assert_eq!((from(end), from(middle)), (2, 1));
+    assert_eq!(query(grid(1, 1, 1)).reach(), 0);
+    assert_eq!(query(grid(2, 2, 2)).nb_volumes(), 8);
+}
+
+/// A hexahedron squashed flat (every z = 0): its vertices span a plane only.
+fn flat_hex() -> CMap3 {
+    let mut mesh = hex_grid(1, 1, 1);
+    mesh.points.iter_mut().for_each(|p| p[2] = 0.0);
+    build_volume_map(&mesh, &BuildOptions::default()).unwrap().0
+}
+
+#[test]
+fn flat_queries_have_no_corners_nor_affine_fit_until_corners_are_given() {
+    let cube = query(grid(1, 1, 1));
+    assert!(cube.has_affine_fit());
+    let corners = cube.corners.expect("a unit cube spans a hexahedron");
+    let mut flat = query(flat_hex());
+    assert!(!flat.has_affine_fit());
+    assert_eq!(flat.corners, None);
+    // Without corners the hex quality of a match is unknown, and the metric says −1.
+    let input = grid(1, 1, 1);
+    let mut a = Annotator::new(24);
+    assert!(a.annotate(&input, &flat.word, input.darts().next().unwrap(), None));
+    assert_eq!(flat.matched_hex_quality(&input, a.matched_raw()), None);
+    assert_eq!(Metric::HexQuality.evaluate(&input, &flat, a.matched_raw()), -1.0);
+    // Corners given (the cube's labels: both are labelled alike from their first
+    // dart) read the input's hexahedron, a perfect one.
+    flat.set_corners(corners);
+    assert_eq!(flat.corners, Some(corners));
+    let q = flat.matched_hex_quality(&input, a.matched_raw()).expect("corners set");
+    assert!((q - 1.0).abs() < 1e-12, "{q}");
+    assert!((Metric::HexQuality.evaluate(&input, &flat, a.matched_raw()) - 1.0).abs() < 1e-12);
+}
+
+#[test]
+fn metrics_parse_by_name_and_print_it() {
+    for (text, name) in [("hex-quality", "hex-quality"), ("scaled-jacobian", "hex-quality"), ("volume", "volume")] {
+        let m = Metric::parse(text).unwrap_or_else(|| panic!("{text} is a metric"));
+        assert_eq!((m.name(), format!("{m:?}")), (name, name.to_string()));
+    }
+    assert!(Metric::parse("quality").is_none());
+    let custom = Metric::Custom(std::sync::Arc::new(|_: &CMap3, q: &Query, _: &[u32]| q.nb_darts() as f64));
+    assert_eq!(custom.name(), "custom");
+    let (input, cube) = (grid(2, 1, 1), query(grid(1, 1, 1)));
+    let mut a = Annotator::new(24);
+    assert!(a.annotate(&input, &cube.word, input.darts().next().unwrap(), None));
+    assert_eq!(custom.evaluate(&input, &cube, a.matched_raw()), 24.0);
+    let v = Metric::Volume.evaluate(&input, &cube, a.matched_raw());
+    assert!((v - 1.0).abs() < 1e-12, "{v}");
+}
