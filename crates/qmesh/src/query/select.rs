@@ -183,10 +183,9 @@ pub fn select_random_lazily(
         let consumed = MatchOptions { consumed: Some(&taken.used), ..*opts };
         matches_at(map, set, &consumed, &mut annot, start, &mut found);
         stats.matches += found.matches.len();
+        // The matches from one start all hold that dart: at most one of them is taken.
         for &m in &found.matches {
-            if out.len() < max {
-                out.extend(taken.take(map, set, m, &mut annot));
-            }
+            out.extend(taken.take(map, set, m, &mut annot));
         }
     }
     stats.with_automorphisms = found.all.iter().sum();
@@ -268,5 +267,40 @@ fn shuffle(v: &mut [usize], seed: u64) {
     for i in (1..v.len()).rev() {
         let j = (rng.next_u64() % (i as u64 + 1)) as usize;
         v.swap(i, j);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn lazy_permutation_draws_every_index_once() {
+        for (n, seed) in [(1, 0), (2, 5), (10, 1), (1000, 42)] {
+            let mut drawn: Vec<usize> = LazyPermutation::new(n, seed).collect();
+            assert!(n < 10 || drawn.windows(2).any(|w| w[0] > w[1]), "n = {n}: drawn in order");
+            drawn.sort_unstable();
+            assert_eq!(drawn, (0..n).collect::<Vec<_>>(), "n = {n}");
+        }
+    }
+
+    /// Every permutation is reachable, those with fixed points included (a variant
+    /// that always swaps with a smaller index, Sattolo's, only draws cycles).
+    #[test]
+    fn shuffle_draws_permutations_with_and_without_fixed_points() {
+        let shuffled = |seed: u64| {
+            let mut v: Vec<usize> = (0..10).collect();
+            shuffle(&mut v, seed);
+            v
+        };
+        let fixed_points = |v: &[usize]| v.iter().enumerate().filter(|&(i, &x)| i == x).count();
+        let all: Vec<Vec<usize>> = (0..30).map(shuffled).collect();
+        for v in &all {
+            let mut sorted = v.clone();
+            sorted.sort_unstable();
+            assert_eq!(sorted, (0..10).collect::<Vec<_>>());
+        }
+        assert!(all.iter().any(|v| fixed_points(v) > 0) && all.iter().any(|v| fixed_points(v) < 10));
+        assert_eq!(shuffled(3), shuffled(3));
     }
 }

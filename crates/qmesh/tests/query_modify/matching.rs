@@ -537,6 +537,7 @@ fn lazy_random_selection_is_seeded_separated_and_stops_at_max() {
     // asking for more than fit takes what fits (every dart is tried).
     let (all, seen) = select_random_lazily(&g, &set, &opts, 5, 1000, Separation::Vertices);
     assert!(seen.starts_tested > g.nb_darts() / 2, "{seen:?}");
+    assert!(seen.starts_tested < g.nb_darts(), "darts already taken are not tried: {seen:?}");
     let mut vertices = std::collections::HashSet::new();
     for s in &all {
         let mine: std::collections::HashSet<u32> = s.darts.iter().map(|&d| g.vertex_of(d)).collect();
@@ -545,6 +546,8 @@ fn lazy_random_selection_is_seeded_separated_and_stops_at_max() {
     }
     // 8×8 cells: pairs that do not touch fit at most ⌈8/3⌉ per row of every other row.
     assert!(!all.is_empty() && all.len() <= 12, "{}", all.len());
-    let (dense, _) = select_random_lazily(&g, &set, &opts, 5, 1000, Separation::Darts);
+    let (dense, seen) = select_random_lazily(&g, &set, &opts, 5, 1000, Separation::Darts);
     assert!(dense.len() > all.len() && dense.len() <= 32);
+    // Taken darts count as ∅: every match found is free to take.
+    assert_eq!(seen.matches, dense.len(), "{seen:?}");
 }

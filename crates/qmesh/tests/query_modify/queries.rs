@@ -4,7 +4,7 @@
 use qmesh::build::{BuildOptions, build_volume_map};
 use qmesh::cmap::{CMap3, Dart};
 use qmesh::generate::hex_grid;
-use qmesh::query::{Annotator, Condition, MAX_QUERY_DARTS, Metric, Query, QueryError};
+use qmesh::query::{Annotator, Condition, MAX_QUERY_DARTS, Metric, Query, QueryError, Separation, Strategy};
 
 fn grid(x: usize, y: usize, z: usize) -> CMap3 {
     build_volume_map(&hex_grid(x, y, z), &BuildOptions::default()).unwrap().0
@@ -73,6 +73,18 @@ fn flat_queries_have_no_corners_nor_affine_fit_until_corners_are_given() {
     let q = flat.matched_hex_quality(&input, a.matched_raw()).expect("corners set");
     assert!((q - 1.0).abs() < 1e-12, "{q}");
     assert!((Metric::HexQuality.evaluate(&input, &flat, a.matched_raw()) - 1.0).abs() < 1e-12);
+}
+
+#[test]
+fn strategies_and_separations_parse_by_name() {
+    for (name, strategy) in [("greedy", Strategy::Greedy), ("best", Strategy::Best), ("random", Strategy::Random(7))] {
+        assert_eq!(Strategy::parse(name, 7), Some(strategy));
+        assert_eq!(strategy.name(), name);
+    }
+    assert_eq!(Strategy::parse("first", 7), None);
+    assert_eq!(Separation::parse("darts"), Some(Separation::Darts));
+    assert_eq!(Separation::parse("vertices"), Some(Separation::Vertices));
+    assert_eq!(Separation::parse("faces"), None);
 }
 
 #[test]
