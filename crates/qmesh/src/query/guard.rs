@@ -133,13 +133,16 @@ mod tests {
         }
     }
 
-    /// 70 cube queries with `*` conditions (0..70) and 70 with `ε` (70..140): the same
-    /// labels and corners, words that part at the first condition, three bitset words.
+    /// 70 cube queries with `*` conditions (0..70) and 70 with `ε` on their last dart
+    /// (70..140): the same labels and corners, words that part at their last symbol
+    /// (a tree of a long shared run and two one-symbol leaves), three bitset words.
     fn two_groups() -> (Vec<Query>, PrefixTree, CornerGuards) {
         let cube = build_volume_map(&crate::generate::hex_grid(1, 1, 1), &BuildOptions::default()).unwrap().0;
-        let any = Query::new("any", cube.clone(), |_| Condition::Any).unwrap();
-        let boundary = Query::new("boundary", cube, |_| Condition::Boundary).unwrap();
-        let queries: Vec<Query> = (0..140).map(|i| if i < 70 { any.clone() } else { boundary.clone() }).collect();
+        let any = Query::new("any", cube, |_| Condition::Any).unwrap();
+        let mut late = any.clone();
+        let last = late.labelling.darts[23];
+        late.set_conditions(|d| if d == last { Condition::Boundary } else { Condition::Any });
+        let queries: Vec<Query> = (0..140).map(|i| if i < 70 { any.clone() } else { late.clone() }).collect();
         let tree = PrefixTree::new(queries.iter().map(|q| &q.word));
         let guards = CornerGuards::new(&tree, &queries);
         (queries, tree, guards)
@@ -172,20 +175,20 @@ mod tests {
         let mut a = Annotator::new(24);
         assert!(a.annotate(&map, &queries[0].word, map.darts().next().unwrap(), None));
         let path = path_to(&tree, 0);
-        assert!(path.len() >= 2, "{path:?}");
+        assert_eq!(path.len(), 3, "root, shared run, leaf: {path:?}");
         // A perfect cube's corners have a Jacobian of exactly 1: at a threshold of 1
-        // every corner fails. Walking down to where the `*` queries end, some node
-        // drops them all and says that nothing is left below it.
+        // every corner fails. Its corners are all matched on the shared run, which
+        // drops every query and says that nothing is left below it.
         let mut alive = [u64::MAX; 3];
         let stop = path.iter().position(|&n| !g.apply(n, &map, &a.matched, 1.0, &mut alive));
-        assert!(stop.is_some(), "the walk went on to the end");
-        assert!((0..70).all(|q| !is_alive(&alive, q)));
+        assert_eq!(stop, Some(1), "dropped where the corners are matched");
+        assert!((0..140).all(|q| !is_alive(&alive, q)));
         // Below the Jacobian of every corner, nothing is dropped.
         let mut alive = [u64::MAX; 3];
         assert!(path.iter().all(|&n| g.apply(n, &map, &a.matched, 0.5, &mut alive)));
         assert_eq!(alive, [u64::MAX; 3]);
-        // Where only `ε` queries are alive, the `*` queries' own node has nothing left
-        // below it, whatever the geometry.
+        // Where only the `ε` queries are alive, the `*` queries' own leaf has nothing
+        // left below it, whatever the geometry.
         let mut boundary_only = [0u64; 3];
         (70..140).for_each(|q| boundary_only[q as usize / 64] |= 1 << (q % 64));
         let end = *path.last().unwrap();
