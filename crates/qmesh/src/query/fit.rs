@@ -128,6 +128,18 @@ mod tests {
         assert!(AffineFit::new(vec![1, 2, 3], vec![[0., 0., 0.], [1., 0., 0.], [0., 1., 0.]]).is_none());
     }
 
+    /// Flatness is judged relative to the points' size: a square 1000 wide and 10⁻⁹
+    /// high is flat (no affine fit), one 100 high is not.
+    #[test]
+    fn flat_point_sets_have_no_fit_whatever_their_size() {
+        let slab = |h: f64| {
+            let pts = vec![[0., 0., 0.], [1000., 0., 0.], [0., 1000., 0.], [1000., 1000., h], [500., 500., 0.]];
+            AffineFit::new((1..=5).collect(), pts)
+        };
+        assert!(slab(1e-9).is_none());
+        assert!(slab(100.0).is_some());
+    }
+
     /// The residual is relative to the spread of the matched positions: a distorted
     /// copy scores the same in millimetres as in metres, above 0 and at most 1.
     #[test]
