@@ -4,7 +4,10 @@
 use qmesh::build::{BuildOptions, build_volume_map};
 use qmesh::cmap::{CMap3, Dart};
 use qmesh::generate::hex_grid;
-use qmesh::query::{Annotator, Condition, MAX_QUERY_DARTS, Metric, Query, QueryError, Separation, Strategy};
+use qmesh::query::{
+    Annotator, Condition, MAX_QUERY_DARTS, MatchOptions, Metric, Query, QueryError, QuerySet, Separation, Strategy,
+    find_matches,
+};
 
 fn grid(x: usize, y: usize, z: usize) -> CMap3 {
     build_volume_map(&hex_grid(x, y, z), &BuildOptions::default()).unwrap().0
@@ -85,6 +88,13 @@ fn strategies_and_separations_parse_by_name() {
     assert_eq!(Separation::parse("darts"), Some(Separation::Darts));
     assert_eq!(Separation::parse("vertices"), Some(Separation::Vertices));
     assert_eq!(Separation::parse("faces"), None);
+    for c in Condition::ALL {
+        assert_eq!(Condition::parse(c.symbol()), Some(c), "{}", c.symbol());
+        assert_eq!(Condition::parse(c.name()), Some(c), "{}", c.name());
+        assert!(c.name().is_ascii());
+    }
+    assert_eq!(Condition::parse(" any "), Some(Condition::Any));
+    assert_eq!(Condition::parse("all"), None);
 }
 
 #[test]
@@ -102,4 +112,53 @@ fn metrics_parse_by_name_and_print_it() {
     assert_eq!(custom.evaluate(&input, &cube, a.matched_raw()), 24.0);
     let v = Metric::Volume.evaluate(&input, &cube, a.matched_raw());
     assert!((v - 1.0).abs() < 1e-12, "{v}");
+}
+
+/// `min_hex_quality` checks corners during the walk (corner guards) and each match at
+/// its end: the matches are those of a plain search whose hexahedron is above the
+/// threshold. 140 queries (three bitset words): cubes with their corners (even
+/// indices) and cubes with `ε` on their last dart and mirrored corners (odd), an
+/// inverted hexahedron that no match may keep.
+#[test]
+fn min_hex_quality_keeps_the_matches_above_it_among_many_queries() {
+    let mut mesh = hex_grid(3, 3, 1);
+    mesh.points.iter_mut().filter(|p| **p == [1.0, 1.0, 1.0]).for_each(|p| *p = [1.6, 1.6, 1.4]);
+    let g = build_volume_map(&mesh, &BuildOptions::default()).unwrap().0;
+    let cube = query(grid(1, 1, 1));
+    let c = cube.corners.unwrap();
+    let mut mirrored = cube.clone();
+    let last = mirrored.labelling.darts[23];
+    mirrored.set_conditions(|d| if d == last { Condition::Boundary } else { Condition::Any });
+    mirrored.set_corners([c[4], c[5], c[6], c[7], c[0], c[1], c[2], c[3]]);
+    let set = QuerySet::new((0..140).map(|i| if i % 2 == 0 { cube.clone() } else { mirrored.clone() }).collect());
+    let t = 0.5;
+    let guarded = find_matches(&g, &set, &MatchOptions { min_hex_quality: Some(t), ..Default::default() });
+    let plain = find_matches(&g, &set, &MatchOptions::default());
+    let mut a = set.annotator();
+    let quality = |m: &qmesh::query::Match, a: &mut Annotator| {
+        let raw: Vec<u32> = set.darts_of(&g, m, a).iter().map(|d| d.raw()).collect();
+        set.queries[m.query as usize].matched_hex_quality(&g, &raw).unwrap()
+    };
+    let above: Vec<(u32, Dart)> =
+        plain.matches.iter().filter(|m| quality(m, &mut a) > t).map(|m| (m.query, m.start)).collect();
+    let kept: Vec<(u32, Dart)> = guarded.matches.iter().map(|m| (m.query, m.start)).collect();
+    assert_eq!(kept, above);
+    // Three of the four cells around the moved vertex fall to 0.5 or below, the other
+    // six cells do not; no mirrored cube is kept.
+    let per_query = &guarded.per_query;
+    assert!((0..140).all(|q| per_query[q] == if q % 2 == 0 { 6 } else { 0 }), "{per_query:?}");
+    assert!(guarded.steps <= plain.steps);
+}
+
+/// A consumed dart counts as ∅ (2025 §5.2.2) even as the start: a lone cube with one
+/// dart consumed has no match, from that dart or from any other.
+#[test]
+fn a_consumed_start_dart_starts_no_match() {
+    let cube = grid(1, 1, 1);
+    let set = QuerySet::new(vec![query(grid(1, 1, 1))]);
+    assert_eq!(find_matches(&cube, &set, &MatchOptions::default()).matches.len(), 1);
+    let mut consumed = qmesh::cmap::BitSet::with_len(cube.dart_capacity());
+    consumed.insert(cube.darts().next().unwrap().idx());
+    let r = find_matches(&cube, &set, &MatchOptions { consumed: Some(&consumed), ..Default::default() });
+    assert!(r.matches.is_empty(), "{:?}", r.matches);
 }
