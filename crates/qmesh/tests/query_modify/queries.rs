@@ -45,7 +45,8 @@ fn reach_counts_faces_crossed_from_the_start_volume() {
     let from = |d: Dart| Query::from_start("row", row.clone(), d, |_| Condition::Any).unwrap().reach();
     assert_eq!((from(end), from(middle)), (2, 1));
     assert_eq!(query(grid(1, 1, 1)).reach(), 0);
-    assert_eq!(query(grid(2, 2, 2)).nb_volumes(), 8);
+    let block = query(grid(2, 2, 2));
+    assert_eq!((block.nb_volumes(), block.labelling.len(), block.labelling.is_empty()), (8, 8 * 24, false));
 }
 
 /// A hexahedron squashed flat (every z = 0): its vertices span a plane only.
