@@ -96,6 +96,12 @@ fn strategies_and_separations_parse_by_name() {
     }
     assert_eq!(Condition::parse(" any "), Some(Condition::Any));
     assert_eq!(Condition::parse("all"), None);
+    // A word reads dart by dart, β1, β2, β3 each: a lone cube with `ε` everywhere has
+    // 24 darts and 24 `ε`.
+    let lone = Query::new("lone", grid(1, 1, 1), |_| Condition::Boundary).unwrap();
+    let text = lone.word.display();
+    assert!(text.starts_with("⟨2,") && text.ends_with(",ε⟩"), "{text}");
+    assert_eq!((text.matches(" | ").count(), text.matches('ε').count()), (23, 24), "{text}");
 }
 
 #[test]
