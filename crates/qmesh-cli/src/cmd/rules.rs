@@ -22,7 +22,8 @@ pub struct QueryArgs {
     #[arg(long, default_value = "start")]
     pub orientation: String,
     /// Reject matches of a query mesh file whose best affine fit from the query leaves a
-    /// relative residual above this (0..1).
+    /// relative residual above this: the RMS distance from the fit over the RMS distance
+    /// from the centroid, 0..1 whatever the units (0.01: 1 % off an affine copy).
     #[arg(long)]
     pub max_residual: Option<f64>,
     /// Worker threads (default: all cores).

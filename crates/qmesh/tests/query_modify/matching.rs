@@ -517,6 +517,19 @@ fn geometric_orientation_keeps_the_image_that_fits_best() {
         moved += usize::from(s != found_at);
     }
     assert!(moved > 0, "orienting by geometry never moved a match: the check above is vacuous");
+    // Turned by 30° about z and moved far away: every image fits up to rounding (not
+    // exactly 0), and the one kept is still the closest to the query's orientation.
+    let (c, s30) = (30f64.to_radians().cos(), 30f64.to_radians().sin());
+    let far_turn = |p: [f64; 3]| [c * p[0] - s30 * p[1] + 1000.1, s30 * p[0] + c * p[1] - 3.7, p[2] + 0.3];
+    for first in 0..4 {
+        let m = hex_listed_from(&hex_grid(1, 1, 1), first, far_turn);
+        let r = find_matches(&m, &QuerySet::new(vec![q.clone()]), &MatchOptions::default());
+        let (s, d1) = (r.matches[0].start, q.labelling.darts[0]);
+        for (got, want) in [(m.point(s), plain.point(d1)), (m.point(m.next(s)), plain.point(plain.next(d1)))] {
+            let want = far_turn(want);
+            assert!((0..3).all(|i| (got[i] - want[i]).abs() < 1e-9), "corner {first}: {got:?} vs {want:?}");
+        }
+    }
 }
 
 #[test]
