@@ -160,6 +160,12 @@ mod tests {
         assert!((r1000 - r1).abs() < 1e-12, "{r1} in metres, {r1000} in millimetres");
         // All five positions at one point: nothing to fit against, no residual.
         assert_eq!(fit.score(|_| [2.0, 3.0, 4.0]).0, 0.0);
+        // Positions that no affine map of the query explains better than their
+        // centroid: weights (2, −1, −1, −1, 1) are orthogonal to x, y, z and 1 over
+        // the query's points, so the fit is the constant map and the residual is 1.
+        let w = [2.0, -1.0, -1.0, -1.0, 1.0];
+        let (r, _) = fit.score(|l| [3.0 * w[l as usize - 1] + 7.0, 4.0, -2.0]);
+        assert!((r - 1.0).abs() < 1e-9, "{r}");
         // Scattered positions with no affine relation to the query stay at most 1.
         let far = [[0., 0., 0.], [0., 0., 9.], [5., 0., 0.], [0., 7., 0.], [-3., -3., -3.]];
         let (r, _) = fit.score(|l| far[l as usize - 1]);
