@@ -69,9 +69,9 @@ impl AffineFit {
 
 /// Σ ‖p − c‖² over the points, c their centroid.
 fn spread_around_centroid(points: &[[f64; 3]]) -> f64 {
-    let n = points.len() as f64;
-    let c: [f64; 3] = std::array::from_fn(|i| points.iter().map(|p| p[i]).sum::<f64>() / n);
-    points.iter().map(|p| (0..3).map(|i| (p[i] - c[i]).powi(2)).sum::<f64>()).sum()
+    use crate::geom::{centroid, dot, sub};
+    let c = centroid(points.iter().copied());
+    points.iter().map(|&p| dot(sub(p, c), sub(p, c))).sum()
 }
 
 /// Gauss–Jordan inverse with partial pivoting; None when singular.
