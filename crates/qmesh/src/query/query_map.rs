@@ -6,7 +6,7 @@ use super::error::QueryError;
 use super::fit::AffineFit;
 use super::word::{Condition, Labelling, QueryWord};
 use crate::cmap::{CMap3, Dart, Orbit, OrbitWalker};
-use crate::geom::hex_scaled_jacobian;
+use crate::geom::{cross, dot, hex_scaled_jacobian, sub};
 use std::sync::OnceLock;
 
 /// A query (2025 §5): a connected map, 1- and 2-sewn everywhere, with a boundary
@@ -229,16 +229,6 @@ impl Query {
         });
         Some(hex_scaled_jacobian(&pts))
     }
-}
-
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    crate::geom::sub(a, b)
-}
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    crate::geom::cross(a, b)
-}
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    crate::geom::dot(a, b)
 }
 
 /// The faces of every volume of the query as label cycles (β1 order).
