@@ -209,6 +209,78 @@ fn json_of(args: &[&str]) -> serde_json::Value {
     serde_json::from_str(&out).unwrap_or_else(|e| panic!("{args:?}: {e}: {out}"))
 }
 
+/// `subdivide --conformal` runs the transitions on the subdivision's own map: the same
+/// cells as `conformal` on the written octree, conformal and valid.
+#[test]
+fn subdivide_conformal_equals_subdivide_then_conformal() {
+    let (tets, box_off, octree) = (temp("sc-t.vtk"), temp("sc-box.off"), temp("sc-oct.vtk"));
+    let (fused, apart) = (temp("sc-fused.vtk"), temp("sc-apart.vtk"));
+    let s = |p: &PathBuf| p.to_str().unwrap().to_string();
+    assert_eq!(qmesh(&["generate", "tet-grid", "--size", "2,2,2", "-o", &s(&tets)]).0, 0);
+    assert_eq!(qmesh(&["convert", &s(&tets), &s(&box_off)]).0, 0);
+    let base = ["subdivide", &s(&box_off), "--levels", "3", "--json"];
+    json_of(&[&base[..], &["-o", &s(&octree)]].concat());
+    let c = json_of(&["conformal", &s(&octree), "-o", &s(&apart), "--json"]);
+    let f = json_of(&[&base[..], &["-o", &s(&fused), "--conformal"]].concat());
+    let t = &f["transitions"];
+    assert_eq!(t["cell_types"], c["cell_types"]);
+    assert!(c["cell_types"]["pyramid"].as_u64().unwrap() > 0, "{c}");
+    assert_eq!(
+        (t["volumes_replaced"].clone(), t["faces_replaced"].clone()),
+        (c["volumes_replaced"].clone(), c["faces_replaced"].clone())
+    );
+    assert_eq!(
+        (t["non_conformal_faces"].as_u64(), t["unmatched_volumes"].as_u64(), f["valid"].as_bool()),
+        (Some(0), Some(0), Some(true))
+    );
+    let info = json_of(&["info", &s(&fused), "--json"]);
+    assert_eq!((info["non_conformal_faces"].as_u64(), info["inverted_cells"].as_u64()), (Some(0), Some(0)));
+    assert_eq!(info["cell_types"], c["cell_types"]);
+    // The transition folders only go with --conformal, and no transitions on plain boxes.
+    let (code, _, err) = qmesh(&[&base[..], &["-o", &s(&fused), "--force", "--transition-patterns", "x"]].concat());
+    assert!(code != 0 && err.contains("--conformal"), "{err}");
+    let (code, _, err) = qmesh(&[&base[..], &["-o", &s(&fused), "--force", "--conformal", "--direct"]].concat());
+    assert!(code != 0 && err.contains("--direct"), "{err}");
+}
+
+/// With the authors' set-up and patterns, `subdivide --conformal` gives the authors'
+/// program's figures (`cgal_hexa_subdivision -lmax 6 -create-transitions`, bunny).
+#[cfg_attr(not(qmesh_data), ignore = "needs the shared data folder ($QMESH_DATA)")]
+#[test]
+fn subdivide_conformal_gives_the_authors_counts() {
+    let data = std::env::var_os("QMESH_DATA")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared/data"));
+    let s = |p: &PathBuf| p.to_str().unwrap().to_string();
+    let patterns = format!(
+        "{},{}",
+        s(&data.join("patterns/cgal/hexa-325-patterns")),
+        s(&data.join("patterns/cgal/square-5-patterns"))
+    );
+    let out = temp("sc-bunny.vtk");
+    let bunny = data.join("surface/bunny.off");
+    let j = json_of(&[
+        "subdivide",
+        &s(&bunny),
+        "--root",
+        "box",
+        "--levels",
+        "6",
+        "--remove-outside",
+        "--conformal",
+        "--transition-patterns",
+        &patterns,
+        "-o",
+        &s(&out),
+        "--json",
+    ]);
+    let t = &j["transitions"];
+    let k = &t["cell_types"];
+    let counts = [&k["hex"], &k["prism"], &k["pyramid"], &k["tet"], &k["other"], &t["volumes_replaced"], &j["darts"]];
+    assert_eq!(counts.map(|v| v.as_u64().unwrap()), [25_792, 1_498, 17_002, 12_845, 0, 2_718, 1_072_144], "{j}");
+    assert_eq!((t["non_conformal_faces"].as_u64(), j["valid"].as_bool()), (Some(0), Some(true)));
+}
+
 #[test]
 fn octree_pipeline_subdivide_conformal_info() {
     let (tets, box_off, octree, conf) = (temp("t.vtk"), temp("box.off"), temp("oct.vtk"), temp("conf.vtk"));

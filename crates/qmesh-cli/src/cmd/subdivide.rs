@@ -3,11 +3,18 @@
 
 use std::path::PathBuf;
 use std::process::ExitCode;
+use std::time::Instant;
 
 use anyhow::{Result, bail};
-use qmesh::apps::{RootShape, SubdivideOptions, subdivide};
+use qmesh::apps::{
+    ConformalPhases, GeneratedKind, RootShape, SubdivideOptions, generated_pattern_set, subdivide, transitions_on_map,
+};
+use qmesh::build::{ExtractedKinds, extract, non_conformal_faces};
+use qmesh::cmap::{CMap3, Dart};
 use qmesh::geom::TriangleBvh;
 use qmesh::io::{Format, WriteOptions, read_surface, resolve_format, write_indexed};
+use qmesh::pattern::{FlagRule, PatternKind, PatternSet};
+use qmesh::replace::ReplaceReport;
 use serde_json::json;
 
 use super::parse_format;
@@ -45,6 +52,16 @@ pub struct Args {
     /// Test patterns directly instead of looking signatures up.
     #[arg(long)]
     pub no_signatures: bool,
+    /// Then make the mesh conformal on the same map (2022 Algorithm 7), as the authors'
+    /// program's `-create-transitions` does: the output holds hexahedra, prisms, pyramids
+    /// and tetrahedra with no hanging vertex (`qmesh conformal` does the same from a file).
+    #[arg(long, conflicts_with = "direct")]
+    pub conformal: bool,
+    /// With `--conformal`: transition pattern folders (default: qmesh's generated
+    /// `transitions` set; the papers' set: hexa-325-patterns and square-5-patterns).
+    /// Repeat the option or separate folders with commas.
+    #[arg(long, value_delimiter = ',', requires = "conformal")]
+    pub transition_patterns: Vec<PathBuf>,
     /// Input format, overriding the extension.
     #[arg(long)]
     pub format: Option<String>,
@@ -80,10 +97,22 @@ pub fn run(a: Args) -> Result<ExitCode> {
     };
     let pb = crate::progress::bar(u64::from(a.levels), "subdivide", a.report.quiet || a.report.json);
     let set = super::patterns::load_sets(&a.patterns)?;
-    let s = subdivide(&bvh, &opts, set.as_ref(), &|l| pb.set_position(u64::from(l) - 1))?;
+    // Read before subdividing, so a bad folder stops the run at once; timed with the
+    // transitions, as the authors' program times its loading.
+    let t = Instant::now();
+    let transition_set = if a.conformal { Some(transition_set(&a.transition_patterns)?) } else { None };
+    let loading = t.elapsed().as_secs_f64();
+    let mut s = subdivide(&bvh, &opts, set.as_ref(), &|l| pb.set_position(u64::from(l) - 1))?;
     pb.finish_and_clear();
+    let conformal = match (&transition_set, &mut s.map) {
+        (Some(set), Some(map)) => Some(Transitions::run(map, &s.volumes, set, !a.no_signatures, loading)?),
+        _ => None,
+    };
     let validity = s.map.as_ref().map(|m| m.is_valid().is_empty());
-    write_indexed(&a.output.output, &s.mesh, out_format, &WriteOptions::default())?;
+    match (&conformal, &s.map) {
+        (Some(_), Some(map)) => write_indexed(&a.output.output, &extract(map).0, out_format, &WriteOptions::default())?,
+        _ => write_indexed(&a.output.output, &s.mesh, out_format, &WriteOptions::default())?,
+    }
     let r = &s.report;
     if a.report.json {
         let j = json!({
@@ -105,6 +134,7 @@ pub fn run(a: Args) -> Result<ExitCode> {
             "valid": validity,
             "seconds": r.seconds,
             "phases": r.phases,
+            "transitions": conformal.as_ref().map(Transitions::json),
         });
         println!("{}", serde_json::to_string_pretty(&j)?);
     } else if !a.report.quiet {
@@ -126,6 +156,9 @@ pub fn run(a: Args) -> Result<ExitCode> {
                 validity.unwrap_or(true)
             );
         }
+        if let Some(c) = &conformal {
+            c.print();
+        }
         println!("{:.3} s; wrote {}", r.seconds, a.output.output.display());
     }
     if out_format == Format::Off || out_format == Format::Obj {
@@ -134,7 +167,77 @@ pub fn run(a: Args) -> Result<ExitCode> {
             a.output.output.display()
         );
     }
-    Ok(if validity == Some(false) { ExitCode::from(1) } else { ExitCode::SUCCESS })
+    let conformal_ok = conformal.as_ref().is_none_or(Transitions::is_conformal);
+    Ok(if validity == Some(false) || !conformal_ok { ExitCode::from(1) } else { ExitCode::SUCCESS })
+}
+
+/// The transition patterns of `--conformal`: the folders given, or the generated set.
+fn transition_set(dirs: &[PathBuf]) -> Result<PatternSet> {
+    let set = match super::patterns::load_sets(dirs)? {
+        Some(set) => set,
+        None => generated_pattern_set(GeneratedKind::Transitions, FlagRule::Corners)?,
+    };
+    if set.count(PatternKind::Volume) == 0 {
+        bail!("no v-pattern in {}", super::patterns::path_list(dirs));
+    }
+    Ok(set)
+}
+
+/// What `--conformal` did on the subdivision's map.
+struct Transitions {
+    replace: ReplaceReport,
+    kinds: ExtractedKinds,
+    phases: ConformalPhases,
+    non_conformal_faces: usize,
+    /// Loading the patterns, then the transitions themselves (the step the authors'
+    /// program reports as "Create transitions").
+    seconds: f64,
+}
+
+impl Transitions {
+    fn run(map: &mut CMap3, volumes: &[Dart], set: &PatternSet, use_signatures: bool, loading: f64) -> Result<Self> {
+        let t = Instant::now();
+        let mut phases = ConformalPhases::default();
+        let (replace, kinds) = transitions_on_map(map, set, use_signatures, Some(volumes), &mut phases)?;
+        let seconds = loading + t.elapsed().as_secs_f64();
+        Ok(Transitions { replace, kinds, phases, non_conformal_faces: non_conformal_faces(map), seconds })
+    }
+
+    fn is_conformal(&self) -> bool {
+        self.non_conformal_faces == 0 && self.replace.unmatched_volumes == 0
+    }
+
+    fn json(&self) -> serde_json::Value {
+        let (k, rep) = (&self.kinds, &self.replace);
+        json!({
+            "faces_replaced": rep.faces_replaced,
+            "volumes_replaced": rep.volumes_replaced,
+            "unmatched_faces": rep.unmatched_faces,
+            "unmatched_volumes": rep.unmatched_volumes,
+            "cell_types": {"hex": k.hex, "tet": k.tet, "prism": k.prism, "pyramid": k.pyramid, "other": k.other},
+            "non_conformal_faces": self.non_conformal_faces,
+            "seconds": self.seconds,
+            "phases": self.phases,
+        })
+    }
+
+    fn print(&self) {
+        let (k, rep) = (&self.kinds, &self.replace);
+        println!(
+            "transitions: {} faces and {} volumes replaced ({} / {} unmatched); {} hex, {} tet, {} prism, {} pyramid, {} other; non-conformal faces: {}; {:.3} s",
+            rep.faces_replaced,
+            rep.volumes_replaced,
+            rep.unmatched_faces,
+            rep.unmatched_volumes,
+            k.hex,
+            k.tet,
+            k.prism,
+            k.pyramid,
+            k.other,
+            self.non_conformal_faces,
+            self.seconds
+        );
+    }
 }
 
 fn per_level(v: &[usize]) -> String {

@@ -9,7 +9,9 @@ use rayon::prelude::*;
 
 use super::box_cells::{box_corner_darts, is_corner, walker_chunk};
 use super::hanging::{HangingError, HangingReport, insert_hanging_vertices};
-use crate::build::{BuildError, BuildOptions, CellKind, ExtractedKinds, IndexedMesh, build_map, count_cell_kinds};
+use crate::build::{
+    BuildError, BuildOptions, CellKind, ExtractedKinds, IndexedMesh, build_map, classify_volume, count_kinds_of,
+};
 use crate::cmap::{CMap3, Dart, MapError, Orbit, OrbitWalker};
 use crate::geom::Aabb;
 use crate::pattern::PatternSet;
@@ -124,35 +126,104 @@ pub fn conformal(
     phases.hanging = lap();
     let (mut map, _) = build_map(cells, &BuildOptions { fix_orientation: true })?;
     phases.build = lap();
+    let (replace, kinds) = transitions_on_map(&mut map, set, use_signatures, None, &mut phases)?;
+    Ok((map, ConformalReport { hanging, replace, kinds, seconds: t.elapsed().as_secs_f64(), phases }))
+}
+
+/// The transitions of Algorithm 7 on a map whose volumes are axis-aligned boxes with
+/// their hanging vertices already in place (the map [`conformal`] builds, or the map a
+/// query-replace subdivision leaves, as the authors' program runs them): box corners
+/// flagged, faces with more than four vertices and volumes with more than a plain
+/// hexahedron's darts replaced. `volumes` names one dart of each volume, in increasing
+/// order (by default the map's walk finds them). Fills `phases`' select, lookup, apply
+/// and count.
+///
+/// # Errors
+/// Only if the map has no free mark.
+pub fn transitions_on_map(
+    map: &mut CMap3,
+    set: &PatternSet,
+    use_signatures: bool,
+    volumes: Option<&[Dart]>,
+    phases: &mut ConformalPhases,
+) -> Result<(ReplaceReport, ExtractedKinds), MapError> {
+    let t = Instant::now();
     let flag = map.reserve_mark()?;
-    // Each volume's box corners, and whether it is more than a plain hexahedron (then it
-    // is replaced), found on all cores; then flagged.
-    let reps: Vec<Dart> = map.cells(Orbit::Volume).collect();
-    let (corners, volumes): (Vec<Vec<Dart>>, Vec<Vec<Dart>>) = reps
+    // Each volume's box corners, whether it is more than a plain hexahedron (then it is
+    // replaced, with its faces of more than four vertices) or else its kind, found on
+    // all cores, then flagged. Faces come by name (the smallest dart of both sides, the
+    // dart `cells(Orbit::Face)` gives), so in the order of the map's faces.
+    let walked: Vec<Dart>;
+    let reps = match volumes {
+        Some(v) => v,
+        None => {
+            walked = map.cells(Orbit::Volume).collect();
+            &walked
+        }
+    };
+    let shared = &*map;
+    let found: Vec<Selected> = reps
         .par_chunks(walker_chunk(reps.len()))
         .map(|chunk| {
-            let (mut w, mut corners, mut volumes) = (OrbitWalker::new(), Vec::new(), Vec::new());
+            let (mut w, mut out) = (OrbitWalker::new(), Selected::default());
             for &d in chunk {
-                let darts = w.collect(&map, d, Orbit::Volume);
-                let b = Aabb::of(darts.iter().map(|&x| map.point(x)));
-                corners.extend(box_corner_darts(&map, darts, &b));
-                if darts.len() != PLAIN_HEX_DARTS {
-                    volumes.push(d);
+                let darts = w.collect(shared, d, Orbit::Volume);
+                let b = Aabb::of(darts.iter().map(|&x| shared.point(x)));
+                out.corners.extend(box_corner_darts(shared, darts, &b));
+                if darts.len() == PLAIN_HEX_DARTS {
+                    out.kept.add(classify_volume(shared, d));
+                } else {
+                    out.volumes.push(d);
+                    out.faces.extend(darts.iter().copied().filter(|&x| is_named_wide_face(shared, x)));
                 }
             }
-            (corners, volumes)
+            out
         })
-        .unzip();
-    for x in corners.into_iter().flatten() {
-        map.mark(x, flag);
+        .collect();
+    let mut kinds = ExtractedKinds::default();
+    let (mut volumes, mut faces) = (Vec::new(), Vec::new());
+    for f in found {
+        f.corners.iter().for_each(|&x| map.mark(x, flag));
+        kinds = kinds.plus(&f.kept);
+        volumes.extend(f.volumes);
+        faces.extend(f.faces);
     }
-    let volumes = volumes.concat();
-    let faces: Vec<Dart> = map.cells(Orbit::Face).filter(|&d| map.face_degree(d) > 4).collect();
-    phases.select = lap();
-    let replace = replace_cells(&mut map, set, Flags::Mark(flag), &faces, &volumes, use_signatures);
+    faces.sort_unstable();
+    faces.dedup();
+    phases.select = t.elapsed().as_secs_f64();
+    let t = Instant::now();
+    let replace = replace_cells(map, set, Flags::Mark(flag), &faces, &volumes, use_signatures);
     map.free_mark(flag);
-    (phases.lookup, phases.apply) = (replace.query_seconds, lap() - replace.query_seconds);
-    let kinds = count_cell_kinds(&map);
-    phases.count = lap();
-    Ok((map, ConformalReport { hanging, replace, kinds, seconds: t.elapsed().as_secs_f64(), phases }))
+    (phases.lookup, phases.apply) = (replace.query_seconds, t.elapsed().as_secs_f64() - replace.query_seconds);
+    // The cells that stay were classified above; a volume left unmatched has more than
+    // a hexahedron's darts, so it is no standard cell; the rest are the created volumes.
+    let t = Instant::now();
+    let created: Vec<Dart> = replace.created_volumes.iter().map(|&(d, _)| d).collect();
+    kinds = kinds.plus(&count_kinds_of(map, &created));
+    kinds.other += replace.unmatched_volumes;
+    phases.count = t.elapsed().as_secs_f64();
+    Ok((replace, kinds))
+}
+
+/// What the selection of [`transitions_on_map`] finds in a run of volumes.
+#[derive(Default)]
+struct Selected {
+    corners: Vec<Dart>,
+    volumes: Vec<Dart>,
+    faces: Vec<Dart>,
+    /// The kinds of the volumes that are not replaced.
+    kept: ExtractedKinds,
+}
+
+/// Whether `x` names a face of more than four vertices: the smallest dart of the face
+/// and of the face across.
+fn is_named_wide_face(map: &CMap3, x: Dart) -> bool {
+    let mut degree = 0;
+    for y in map.face_cycle(x) {
+        degree += 1;
+        if y < x || map.beta(y, 3).is_some_and(|o| o < x) {
+            return false;
+        }
+    }
+    degree > 4
 }

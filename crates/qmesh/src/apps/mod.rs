@@ -21,7 +21,7 @@ mod tet2hex;
 mod tetrahedralize;
 mod transitions;
 
-pub use conformal::{ConformalError, ConformalPhases, ConformalReport, conformal};
+pub use conformal::{ConformalError, ConformalPhases, ConformalReport, conformal, transitions_on_map};
 pub use generated_patterns::{GeneratedKind, generated_pattern_meshes, generated_pattern_set};
 pub use hanging::{HangingError, HangingReport, insert_hanging_vertices};
 pub use hex_split::{

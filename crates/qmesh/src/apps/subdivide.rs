@@ -111,6 +111,8 @@ pub struct SubdividePhases {
 pub struct Subdivision {
     pub mesh: IndexedMesh,
     pub map: Option<CMap3>,
+    /// One dart of each volume of `map`, in increasing order (empty without a map).
+    pub volumes: Vec<Dart>,
     pub report: SubdivideReport,
 }
 
@@ -128,13 +130,15 @@ pub fn subdivide(
     let t = Instant::now();
     let start = initial_tree(surface, opts.root, opts.margin);
     let root = start.root;
-    let (mut tree, map, mut report) = if opts.direct {
+    let (mut tree, map, mut volumes, mut report) = if opts.direct {
         let (tree, r) = subdivide_direct(start, surface, opts.levels, opts.remove_outside, progress);
-        (tree, None, r)
+        (tree, None, Vec::new(), r)
     } else {
         let (map, r, leaves) = subdivide_qr(start, surface, opts, patterns, progress)?;
-        (Octree { root, leaves: leaves.into_keys().collect() }, Some(map), r)
+        let volumes: Vec<Dart> = leaves.values().copied().collect();
+        (Octree { root, leaves: leaves.into_keys().collect() }, Some(map), volumes, r)
     };
+    volumes.sort_unstable();
     if opts.direct && opts.remove_outside {
         report.removed_outside += prune_outside(&mut tree, surface);
     }
@@ -148,7 +152,7 @@ pub fn subdivide(
     report.per_level = vec![0; usize::from(opts.levels) + 1];
     tree.leaves.iter().for_each(|c| report.per_level[usize::from(c.level)] += 1);
     report.seconds = t.elapsed().as_secs_f64();
-    Ok(Subdivision { mesh, map, report })
+    Ok(Subdivision { mesh, map, volumes, report })
 }
 
 /// The octree of [`subdivide`] with `direct` (no map): for pipelines that only need

@@ -25,6 +25,17 @@ impl ExtractedKinds {
             CellKind::Polyhedron => self.other += 1,
         }
     }
+
+    /// The counts of both, kind by kind.
+    pub fn plus(&self, o: &ExtractedKinds) -> ExtractedKinds {
+        ExtractedKinds {
+            tet: self.tet + o.tet,
+            pyramid: self.pyramid + o.pyramid,
+            prism: self.prism + o.prism,
+            hex: self.hex + o.hex,
+            other: self.other + o.other,
+        }
+    }
 }
 
 fn cycle(map: &CMap3, d: Dart, n: usize) -> Vec<Dart> {
@@ -90,13 +101,7 @@ pub fn count_kinds_of(map: &CMap3, reps: &[Dart]) -> ExtractedKinds {
             chunk.iter().for_each(|&d| kinds.add(classify_volume(map, d)));
             kinds
         })
-        .reduce(ExtractedKinds::default, |a, b| ExtractedKinds {
-            tet: a.tet + b.tet,
-            pyramid: a.pyramid + b.pyramid,
-            prism: a.prism + b.prism,
-            hex: a.hex + b.hex,
-            other: a.other + b.other,
-        })
+        .reduce(ExtractedKinds::default, |a, b| a.plus(&b))
 }
 
 /// The kind of the volume of `d` (as [`recognise_volume`], without building its node
