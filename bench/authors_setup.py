@@ -9,7 +9,13 @@ volume query-replaces for both tools, the step time (qmesh's subdivision and rem
 the peer's `Subdivision` + `Remove outside`), whole-process wall time and peak memory,
 and the ratios peer/qmesh (above 1: qmesh is faster or smaller).
 
-usage: bench/authors_setup.py [--runs N] [--levels 5,6,7] [--init X] [--out DIR] [SURFACE...]"""
+With --transitions, both tools then make the mesh conformal with the authors' 325 + 5
+transition patterns (`subdivide --conformal` / `-create-transitions`): the table gives
+the cells of each kind, volume replacements and darts of both, and the transitions step
+(qmesh's `transitions.seconds`, pattern loading included / the peer's `Create
+transitions TOTAL`).
+
+usage: bench/authors_setup.py [--runs N] [--levels 5,6,7] [--init X] [--transitions] [--out DIR] [SURFACE...]"""
 import argparse
 import json
 import os
@@ -38,11 +44,31 @@ def peer_figures(text):
     }
 
 
+def peer_transitions(text):
+    """The peer's cells, volume replacements, darts and step after its transitions."""
+    after = text.split("Create transitions TOTAL:")
+    if len(after) < 2:
+        sys.exit(f"peer output without its transitions:\n{text}")
+    kinds = re.search(r"#prisms=(\d+) #pyramids=(\d+) #tetrahedra=(\d+) #hexahedra=(\d+) #generic=(\d+)", after[1])
+    prism, pyramid, tet, hexa, other = (int(x) for x in kinds.groups())
+    return {
+        "cells": {"hex": hexa, "prism": prism, "pyramid": pyramid, "tet": tet, "other": other},
+        "vqr": int(re.search(r"#volumes-replaced: (\d+)", after[1]).group(1)),
+        "darts": int(re.search(r"#Darts=(\d+)", after[1]).group(1)),
+        "step": float(re.match(r"\s*([0-9.eE+-]+)s", after[1]).group(1)),
+    }
+
+
+def cells(k):
+    return f"{k['hex']:,} / {k['prism']:,} / {k['pyramid']:,} / {k['tet']:,} / {k['other']:,}"
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--runs", type=int, default=3)
     ap.add_argument("--levels", default="5,6,7")
     ap.add_argument("--init", type=int, default=1)
+    ap.add_argument("--transitions", action="store_true")
     ap.add_argument("--out", default="/tmp/qmesh-authors-setup")
     ap.add_argument("surfaces", nargs="*")
     a = ap.parse_args()
@@ -51,10 +77,18 @@ def main():
     os.makedirs(a.out, exist_ok=True)
     sh("cargo", "build", "--release", "-q", "--manifest-path", os.path.join(ROOT, "Cargo.toml"))
     patterns = os.path.join(DATA, "patterns", "cgal")
-    print("| surface | level | qmesh volumes | generic | #fqr | #vqr | peer volumes | generic | #fqr | #vqr "
+    transitions = ",".join(os.path.join(patterns, p) for p in ("hexa-325-patterns", "square-5-patterns"))
+    if a.transitions:
+        print("| surface | level | qmesh hex / prism / pyramid / tet / other | #vqr | darts "
+              "| peer hex / prism / pyramid / tet / other | #vqr | darts "
+              "| qmesh transitions s | peer transitions s | step ratio | qmesh wall s | peer wall s | wall ratio "
+              "| qmesh MB | peer MB | memory ratio |")
+        print("|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|")
+    else:
+        print("| surface | level | qmesh volumes | generic | #fqr | #vqr | peer volumes | generic | #fqr | #vqr "
           "| qmesh step s | peer step s | step ratio | qmesh wall s | peer wall s | wall ratio "
           "| qmesh MB | peer MB | memory ratio |")
-    print("|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|")
+        print("|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|")
     for name in a.surfaces or SURFACES:
         src = name if os.path.isabs(name) else os.path.join(DATA, "surface", name)
         stem = os.path.splitext(os.path.basename(src))[0]
@@ -64,13 +98,26 @@ def main():
             sh(Q, "convert", src, off, "--force", "-q")
         for level in [int(x) for x in a.levels.split(",")]:
             out = os.path.join(a.out, f"{stem}_L{level}_box.vtk")
+            extra = (["--conformal", "--transition-patterns", transitions], ["-create-transitions"]) \
+                if a.transitions else ([], [])
             res = sh(
                 sys.executable, MEASURE, str(a.runs),
                 "qmesh", "--", Q, "subdivide", off, "--root", "box", "--init", str(a.init),
-                "--levels", str(level), "--remove-outside", "-o", out, "--json", "--force", "---",
-                "peer", "--", PEER, "-patterns", patterns, "-lmax", str(level), "-init", str(a.init), off,
+                "--levels", str(level), "--remove-outside", *extra[0], "-o", out, "--json", "--force", "---",
+                "peer", "--", PEER, "-patterns", patterns, "-lmax", str(level), "-init", str(a.init),
+                *extra[1], off,
             )
             q, p = [json.loads(line) for line in res.splitlines() if line.strip()]
+            if a.transitions:
+                qo, po = q["output"], peer_transitions(p["output"])
+                qt = qo["transitions"]
+                print(f"| {stem} | {level} | {cells(qt['cell_types'])} | {qt['volumes_replaced']:,} | {qo['darts']:,} "
+                      f"| {cells(po['cells'])} | {po['vqr']:,} | {po['darts']:,} "
+                      f"| {qt['seconds']:.3f} | {po['step']:.3f} | {po['step'] / qt['seconds']:.1f} "
+                      f"| {q['seconds']:.2f} | {p['seconds']:.2f} | {p['seconds'] / q['seconds']:.1f} "
+                      f"| {q['peak_rss_bytes'] / 1e6:.0f} | {p['peak_rss_bytes'] / 1e6:.0f} "
+                      f"| {p['peak_rss_bytes'] / q['peak_rss_bytes']:.1f} |", flush=True)
+                continue
             qo, po = q["output"], peer_figures(p["output"])
             print(f"| {stem} | {level} | {qo['volumes']:,} | {qo['with_hanging_vertices']:,} "
                   f"| {qo['faces_replaced']:,} | {qo['volumes_replaced']:,} "

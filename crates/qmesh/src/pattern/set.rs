@@ -2,6 +2,7 @@
 
 use std::path::{Path, PathBuf};
 
+use rayon::prelude::*;
 use rustc_hash::FxHashMap;
 
 use super::flags::FlagRule;
@@ -106,26 +107,35 @@ pub fn load_pattern_dir(dir: &Path, rule: FlagRule) -> PatternSet {
     collect(dir, &mut files);
     files.sort();
     let layout = ["fpattern", "vpattern"].map(|s| dir.join(s)).into_iter().filter(|p| p.is_dir()).count() > 0;
-    let mut set = PatternSet::default();
-    for f in files {
-        let expected = expected_kind(dir, &f);
-        if layout && expected.is_none() {
-            set.skipped.push(Skipped { file: f, reason: "outside the fpattern/ and vpattern/ folders".into() });
-            continue;
-        }
-        if Format::from_path(&f).is_none() {
-            set.skipped.push(Skipped { file: f, reason: "not a mesh file".into() });
-            continue;
-        }
-        match load_pattern(&f, rule) {
-            Ok(p) if expected.is_some_and(|k| k != p.kind) => {
-                let reason = format!("a {} in a folder of {}s", p.kind.name(), expected.unwrap().name());
-                set.skipped.push(Skipped { file: f, reason });
+    // Files are read and their patterns built on all cores, then inserted in file order
+    // (the same set whatever the number of threads).
+    let loaded: Vec<Result<Pattern, Skipped>> = files
+        .into_par_iter()
+        .map(|f| {
+            let expected = expected_kind(dir, &f);
+            let skip = |reason: String| Err(Skipped { file: f.clone(), reason });
+            if layout && expected.is_none() {
+                return skip("outside the fpattern/ and vpattern/ folders".into());
             }
+            if Format::from_path(&f).is_none() {
+                return skip("not a mesh file".into());
+            }
+            match load_pattern(&f, rule) {
+                Ok(p) if expected.is_some_and(|k| k != p.kind) => {
+                    skip(format!("a {} in a folder of {}s", p.kind.name(), expected.unwrap().name()))
+                }
+                Ok(p) => Ok(p),
+                Err(e) => skip(e.to_string()),
+            }
+        })
+        .collect();
+    let mut set = PatternSet::default();
+    for p in loaded {
+        match p {
             Ok(p) => {
                 set.insert(p);
             }
-            Err(e) => set.skipped.push(Skipped { file: f, reason: e.to_string() }),
+            Err(skipped) => set.skipped.push(skipped),
         }
     }
     set
