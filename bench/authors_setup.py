@@ -13,7 +13,8 @@ With --transitions, both tools then make the mesh conformal with the authors' 32
 transition patterns (`subdivide --conformal` / `-create-transitions`): the table gives
 the cells of each kind, volume replacements and darts of both, and the transitions step
 (qmesh's `transitions.seconds`, pattern loading included / the peer's `Create
-transitions TOTAL`).
+transitions TOTAL`), then the same without loading the patterns (qmesh's `load_seconds`
+/ the peer's `Load transition patterns` subtracted).
 
 usage: bench/authors_setup.py [--runs N] [--levels 5,6,7] [--init X] [--transitions] [--out DIR] [SURFACE...]"""
 import argparse
@@ -56,6 +57,7 @@ def peer_transitions(text):
         "vqr": int(re.search(r"#volumes-replaced: (\d+)", after[1]).group(1)),
         "darts": int(re.search(r"#Darts=(\d+)", after[1]).group(1)),
         "step": float(re.match(r"\s*([0-9.eE+-]+)s", after[1]).group(1)),
+        "load": float(re.search(r"Load transition patterns: ([0-9.eE+-]+)s", after[0]).group(1)),
     }
 
 
@@ -81,9 +83,10 @@ def main():
     if a.transitions:
         print("| surface | level | qmesh hex / prism / pyramid / tet / other | #vqr | darts "
               "| peer hex / prism / pyramid / tet / other | #vqr | darts "
-              "| qmesh transitions s | peer transitions s | step ratio | qmesh wall s | peer wall s | wall ratio "
+              "| qmesh transitions s | peer transitions s | step ratio | without loading: qmesh s | peer s | ratio "
+              "| qmesh wall s | peer wall s | wall ratio "
               "| qmesh MB | peer MB | memory ratio |")
-        print("|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|")
+        print("|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|")
     else:
         print("| surface | level | qmesh volumes | generic | #fqr | #vqr | peer volumes | generic | #fqr | #vqr "
           "| qmesh step s | peer step s | step ratio | qmesh wall s | peer wall s | wall ratio "
@@ -114,6 +117,8 @@ def main():
                 print(f"| {stem} | {level} | {cells(qt['cell_types'])} | {qt['volumes_replaced']:,} | {qo['darts']:,} "
                       f"| {cells(po['cells'])} | {po['vqr']:,} | {po['darts']:,} "
                       f"| {qt['seconds']:.3f} | {po['step']:.3f} | {po['step'] / qt['seconds']:.1f} "
+                      f"| {qt['seconds'] - qt['load_seconds']:.3f} | {po['step'] - po['load']:.3f} "
+                      f"| {(po['step'] - po['load']) / (qt['seconds'] - qt['load_seconds']):.1f} "
                       f"| {q['seconds']:.2f} | {p['seconds']:.2f} | {p['seconds'] / q['seconds']:.1f} "
                       f"| {q['peak_rss_bytes'] / 1e6:.0f} | {p['peak_rss_bytes'] / 1e6:.0f} "
                       f"| {p['peak_rss_bytes'] / q['peak_rss_bytes']:.1f} |", flush=True)

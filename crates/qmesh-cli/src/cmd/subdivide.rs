@@ -189,6 +189,8 @@ struct Transitions {
     kinds: ExtractedKinds,
     phases: ConformalPhases,
     non_conformal_faces: usize,
+    /// Loading the patterns.
+    load_seconds: f64,
     /// Loading the patterns, then the transitions themselves (the step the authors'
     /// program reports as "Create transitions").
     seconds: f64,
@@ -200,7 +202,8 @@ impl Transitions {
         let mut phases = ConformalPhases::default();
         let (replace, kinds) = transitions_on_map(map, set, use_signatures, Some(volumes), &mut phases)?;
         let seconds = loading + t.elapsed().as_secs_f64();
-        Ok(Transitions { replace, kinds, phases, non_conformal_faces: non_conformal_faces(map), seconds })
+        let non_conformal_faces = non_conformal_faces(map);
+        Ok(Transitions { replace, kinds, phases, non_conformal_faces, load_seconds: loading, seconds })
     }
 
     fn is_conformal(&self) -> bool {
@@ -216,6 +219,7 @@ impl Transitions {
             "unmatched_volumes": rep.unmatched_volumes,
             "cell_types": {"hex": k.hex, "tet": k.tet, "prism": k.prism, "pyramid": k.pyramid, "other": k.other},
             "non_conformal_faces": self.non_conformal_faces,
+            "load_seconds": self.load_seconds,
             "seconds": self.seconds,
             "phases": self.phases,
         })

@@ -66,21 +66,26 @@ pub fn flag_corners_on(map: &mut CMap3, mark: Mark, boundary: &[Dart], face_patt
         for &d in boundary {
             around.entry(map.vertex_of(d)).or_default().push(normal[&d]);
         }
-        let corner = |v: u32| {
-            let ns = &around[&v];
-            ns.iter().any(|&a| {
-                ns.iter().any(|&b| {
-                    let ab = cross(a, b);
-                    ns.iter().any(|&c| dot(ab, c).abs() > SIN_TOL * norm(a) * norm(b) * norm(c))
-                })
+        // A vertex is a corner when three of its faces' normals are independent: decided
+        // once per vertex (the test is cubic in the vertex's faces).
+        let corner: rustc_hash::FxHashMap<u32, bool> = around
+            .iter()
+            .map(|(&v, ns)| {
+                let independent = ns.iter().any(|&a| {
+                    ns.iter().any(|&b| {
+                        let ab = cross(a, b);
+                        ns.iter().any(|&c| dot(ab, c).abs() > SIN_TOL * norm(a) * norm(b) * norm(c))
+                    })
+                });
+                (v, independent)
             })
-        };
+            .collect();
         boundary
             .iter()
             .copied()
             .filter(|&d| {
                 let Some(o) = surface.opposite(map, d) else { return false };
-                corner(map.vertex_of(d)) && not_parallel(normal[&d], normal.get(&o).copied().unwrap_or([0.0; 3]))
+                corner[&map.vertex_of(d)] && not_parallel(normal[&d], normal.get(&o).copied().unwrap_or([0.0; 3]))
             })
             .collect()
     };
