@@ -16,7 +16,15 @@ the cells of each kind, volume replacements and darts of both, and the transitio
 transitions TOTAL`), then the same without loading the patterns (qmesh's `load_seconds`
 / the peer's `Load transition patterns` subtracted).
 
-usage: bench/authors_setup.py [--runs N] [--levels 5,6,7] [--init X] [--transitions] [--out DIR] [SURFACE...]"""
+With --marching-cubes, qmesh's `marching-cubes SURFACE --levels L` with the authors'
+marching-cubes patterns against the peer's `-marching-cubes`: qmesh's octree has its
+cube root (the crossed cells, all touched by the surface and so of level L in both
+trees, are the same cells only where the roots agree), so the table gives each tool's
+own counts, the march step (qmesh's `seconds`: split, replace, surface / the peer's
+`Compute marching cube TOTAL`), wall time and memory.
+
+usage: bench/authors_setup.py [--runs N] [--levels 5,6,7] [--init X] [--transitions | --marching-cubes]
+                              [--out DIR] [SURFACE...]"""
 import argparse
 import json
 import os
@@ -61,6 +69,38 @@ def peer_transitions(text):
     }
 
 
+def peer_march(text):
+    """The peer's replacements, final darts and march step after its marching cubes."""
+    after = text.split("Compute marching cube TOTAL:")
+    if len(after) < 2:
+        sys.exit(f"peer output without its marching cubes:\n{text}")
+    fqr, vqr = re.search(r"#faces-replaced: (\d+), #volumes-replaced: (\d+)", after[1]).groups()
+    return {
+        "fqr": int(fqr), "vqr": int(vqr),
+        "faces": int(re.search(r"#2-cells=(\d+)", after[1]).group(1)),
+        "step": float(re.match(r"\s*([0-9.eE+-]+)s", after[1]).group(1)),
+    }
+
+
+def march_row(a, stem, src, level, patterns):
+    out = os.path.join(a.out, f"{stem}_L{level}_mc.off")
+    res = sh(
+        sys.executable, MEASURE, str(a.runs),
+        "qmesh", "--", Q, "marching-cubes", src, "--levels", str(level), "--patterns",
+        os.path.join(patterns, "marching-cubes"), "-o", out, "--json", "--force", "---",
+        "peer", "--", PEER, "-patterns", patterns, "-lmax", str(level), "-init", str(a.init),
+        "-marching-cubes", src,
+    )
+    q, p = [json.loads(line) for line in res.splitlines() if line.strip()]
+    qo, po = q["output"], peer_march(p["output"])
+    print(f"| {stem} | {level} | {qo['hexahedra']:,} | {qo['faces_replaced']:,} | {qo['volumes_replaced']:,} "
+          f"| {qo['polygons']:,} | {po['fqr']:,} | {po['vqr']:,} | {po['faces']:,} "
+          f"| {qo['seconds']:.3f} | {po['step']:.3f} | {po['step'] / qo['seconds']:.1f} "
+          f"| {q['seconds']:.2f} | {p['seconds']:.2f} | {p['seconds'] / q['seconds']:.1f} "
+          f"| {q['peak_rss_bytes'] / 1e6:.0f} | {p['peak_rss_bytes'] / 1e6:.0f} "
+          f"| {p['peak_rss_bytes'] / q['peak_rss_bytes']:.1f} |", flush=True)
+
+
 def cells(k):
     return f"{k['hex']:,} / {k['prism']:,} / {k['pyramid']:,} / {k['tet']:,} / {k['other']:,}"
 
@@ -71,6 +111,7 @@ def main():
     ap.add_argument("--levels", default="5,6,7")
     ap.add_argument("--init", type=int, default=1)
     ap.add_argument("--transitions", action="store_true")
+    ap.add_argument("--marching-cubes", action="store_true")
     ap.add_argument("--out", default="/tmp/qmesh-authors-setup")
     ap.add_argument("surfaces", nargs="*")
     a = ap.parse_args()
@@ -80,7 +121,12 @@ def main():
     sh("cargo", "build", "--release", "-q", "--manifest-path", os.path.join(ROOT, "Cargo.toml"))
     patterns = os.path.join(DATA, "patterns", "cgal")
     transitions = ",".join(os.path.join(patterns, p) for p in ("hexa-325-patterns", "square-5-patterns"))
-    if a.transitions:
+    if a.marching_cubes:
+        print("| surface | level | qmesh hexahedra | #fqr | #vqr | surface polygons | peer #fqr (queried) | #vqr (queried) "
+              "| faces | qmesh march s | peer march s | step ratio | qmesh wall s | peer wall s | wall ratio "
+              "| qmesh MB | peer MB | memory ratio |")
+        print("|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|")
+    elif a.transitions:
         print("| surface | level | qmesh hex / prism / pyramid / tet / other | #vqr | darts "
               "| peer hex / prism / pyramid / tet / other | #vqr | darts "
               "| qmesh transitions s | peer transitions s | step ratio | without loading: qmesh s | peer s | ratio "
@@ -100,6 +146,9 @@ def main():
             off = os.path.join(a.out, f"{stem}_surface.off")
             sh(Q, "convert", src, off, "--force", "-q")
         for level in [int(x) for x in a.levels.split(",")]:
+            if a.marching_cubes:
+                march_row(a, stem, off, level, patterns)
+                continue
             out = os.path.join(a.out, f"{stem}_L{level}_box.vtk")
             extra = (["--conformal", "--transition-patterns", transitions], ["-create-transitions"]) \
                 if a.transitions else ([], [])
