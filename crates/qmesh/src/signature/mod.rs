@@ -5,6 +5,7 @@
 //! up in a hash map keyed by signature (2022 §4).
 
 mod face;
+mod labels;
 mod surface;
 mod volume;
 

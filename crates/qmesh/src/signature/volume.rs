@@ -3,6 +3,7 @@
 
 use std::cell::RefCell;
 
+use super::labels::Labels;
 use super::{Flags, Signature, Surface};
 use crate::cmap::{CMap3, Dart};
 
@@ -27,30 +28,24 @@ pub fn word_from(
     bound: Option<&[u32]>,
 ) -> Option<VolumeWord> {
     let mut out = VolumeWord::default();
-    with_labels(map, |labels| word_with(map, surface, flags, start, bound, labels, &mut out))?;
+    with_labels(|labels| word_with(map, surface, flags, start, bound, labels, &mut out))?;
     Some(out)
 }
 
 thread_local! {
-    /// Label of each dart during one traversal (0 = unlabelled), indexed by raw dart
-    /// index and reset after every traversal: one table per thread, grown on demand.
-    static LABELS: RefCell<Vec<u32>> = const { RefCell::new(Vec::new()) };
+    /// The labels of one traversal, one table per thread, cleared after every traversal.
+    static LABELS: RefCell<Labels> = RefCell::new(Labels::default());
 }
 
-/// Runs `f` with this thread's label table, large enough for `map`.
-fn with_labels<R>(map: &CMap3, f: impl FnOnce(&mut Vec<u32>) -> R) -> R {
-    LABELS.with(|l| {
-        let mut l = l.borrow_mut();
-        let len = l.len().max(map.dart_capacity());
-        l.resize(len, 0);
-        f(&mut l)
-    })
+/// Runs `f` with this thread's label table.
+fn with_labels<R>(f: impl FnOnce(&mut Labels) -> R) -> R {
+    LABELS.with(|l| f(&mut l.borrow_mut()))
 }
 
 /// [`word_from`] into `out`'s buffers (cleared first): whether the surface is closed.
 /// For loops over many volumes, which keep one `out`.
 pub fn word_into(map: &CMap3, surface: Surface, flags: Flags, start: Dart, out: &mut VolumeWord) -> bool {
-    with_labels(map, |label| word_with(map, surface, flags, start, None, label, out).is_some())
+    with_labels(|label| word_with(map, surface, flags, start, None, label, out).is_some())
 }
 
 /// [`word_from`] into `out` (cleared first), on a label table that is all zeros on
@@ -61,16 +56,14 @@ fn word_with(
     flags: Flags,
     start: Dart,
     bound: Option<&[u32]>,
-    label: &mut [u32],
+    label: &mut Labels,
     out: &mut VolumeWord,
 ) -> Option<()> {
     out.word.clear();
     out.bits.clear();
     out.darts.clear();
     let result = label_traversal(map, surface, start, bound, label, out);
-    for d in &out.darts {
-        label[d.idx()] = 0;
-    }
+    label.clear();
     result?;
     out.bits.extend(out.darts.iter().map(|&d| flags.get(map, d) as u32));
     Some(())
@@ -83,10 +76,10 @@ fn label_traversal(
     surface: Surface,
     start: Dart,
     bound: Option<&[u32]>,
-    label: &mut [u32],
+    label: &mut Labels,
     out: &mut VolumeWord,
 ) -> Option<()> {
-    label[start.idx()] = 1;
+    label.set(start, 1);
     out.darts.push(start);
     let mut k = 0;
     let mut below = false; // the word is already strictly below the bound
@@ -95,11 +88,12 @@ fn label_traversal(
         k += 1;
         for n in [Some(map.next(d)), surface.opposite(map, d)] {
             let n = n?;
-            if label[n.idx()] == 0 {
+            let mut l = label.get(n);
+            if l == 0 {
                 out.darts.push(n);
-                label[n.idx()] = out.darts.len() as u32;
+                l = out.darts.len() as u32;
+                label.set(n, l);
             }
-            let l = label[n.idx()];
             out.word.push(l);
             if let Some(b) = bound
                 && !below
@@ -146,7 +140,7 @@ pub fn volume_signature_from(
     flags: Flags,
     any: Dart,
 ) -> Option<(Signature, usize, Dart)> {
-    with_labels(map, |label| signature_with(map, surface, flags, any, label))
+    with_labels(|label| signature_with(map, surface, flags, any, label))
 }
 
 fn signature_with(
@@ -154,7 +148,7 @@ fn signature_with(
     surface: Surface,
     flags: Flags,
     any: Dart,
-    label: &mut [u32],
+    label: &mut Labels,
 ) -> Option<(Signature, usize, Dart)> {
     let mut w = VolumeWord::default();
     word_with(map, surface, flags, any, None, label, &mut w)?;
@@ -184,7 +178,7 @@ fn signature_with(
 /// The number of darts and of flagged darts of the closed surface of `any` (None when
 /// it is open): an invariant of its v-signature, read from it by [`signature_shape`].
 pub fn volume_shape(map: &CMap3, surface: Surface, flags: Flags, any: Dart) -> Option<(usize, usize)> {
-    with_labels(map, |label| {
+    with_labels(|label| {
         let mut all = VolumeWord::default();
         word_with(map, surface, flags, any, None, label, &mut all)?;
         Some((all.darts.len(), all.bits.iter().filter(|&&b| b == 1).count()))
@@ -205,7 +199,7 @@ pub fn signature_shape(s: &[u32]) -> (usize, usize) {
 /// whose only candidate for this surface is one pattern, this replaces minimising over
 /// every start (24 full traversals of a subdivided hexahedron) by about one.
 pub fn start_with_signature(map: &CMap3, surface: Surface, flags: Flags, any: Dart, expected: &[u32]) -> Option<Dart> {
-    with_labels(map, |label| {
+    with_labels(|label| {
         let mut all = VolumeWord::default();
         word_with(map, surface, flags, any, None, label, &mut all)?;
         let n = all.darts.len();
@@ -217,9 +211,7 @@ pub fn start_with_signature(map: &CMap3, surface: Surface, flags: Flags, any: Da
         starts.into_iter().find(|&s| {
             let mut out = VolumeWord::default();
             let same = exact_traversal(map, surface, s, &expected[..2 * n], label, &mut out);
-            for d in &out.darts {
-                label[d.idx()] = 0;
-            }
+            label.clear();
             same && out.darts.iter().zip(&expected[2 * n..]).all(|(&d, &b)| u32::from(flags.get(map, d)) == b)
         })
     })
@@ -232,10 +224,10 @@ fn exact_traversal(
     surface: Surface,
     start: Dart,
     expected: &[u32],
-    label: &mut [u32],
+    label: &mut Labels,
     out: &mut VolumeWord,
 ) -> bool {
-    label[start.idx()] = 1;
+    label.set(start, 1);
     out.darts.push(start);
     let (mut k, mut at) = (0, 0);
     while k < out.darts.len() {
@@ -243,11 +235,13 @@ fn exact_traversal(
         k += 1;
         for n in [Some(map.next(d)), surface.opposite(map, d)] {
             let Some(n) = n else { return false };
-            if label[n.idx()] == 0 {
+            let mut l = label.get(n);
+            if l == 0 {
                 out.darts.push(n);
-                label[n.idx()] = out.darts.len() as u32;
+                l = out.darts.len() as u32;
+                label.set(n, l);
             }
-            if expected.get(at) != Some(&label[n.idx()]) {
+            if expected.get(at) != Some(&l) {
                 return false;
             }
             at += 1;
