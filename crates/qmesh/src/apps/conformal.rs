@@ -149,9 +149,9 @@ pub fn transitions_on_map(
 ) -> Result<(ReplaceReport, ExtractedKinds), MapError> {
     let t = Instant::now();
     let flag = map.reserve_mark()?;
-    // Each volume's box corners, whether it is more than a plain hexahedron (then it is
-    // replaced, with its faces of more than four vertices) or else its kind, found on
-    // all cores, then flagged. Faces come by name (the smallest dart of both sides, the
+    // Whether each volume is more than a plain hexahedron (then it is replaced, with its
+    // faces of more than four vertices, and its box corners are flagged) or else its
+    // kind, found on all cores. Faces come by name (the smallest dart of both sides, the
     // dart `cells(Orbit::Face)` gives), so in the order of the map's faces.
     let walked: Vec<Dart>;
     let reps = match volumes {
@@ -168,11 +168,13 @@ pub fn transitions_on_map(
             let (mut w, mut out) = (OrbitWalker::new(), Selected::default());
             for &d in chunk {
                 let darts = w.collect(shared, d, Orbit::Volume);
-                let b = Aabb::of(darts.iter().map(|&x| shared.point(x)));
-                out.corners.extend(box_corner_darts(shared, darts, &b));
                 if darts.len() == PLAIN_HEX_DARTS {
                     out.kept.add(classify_volume(shared, d));
                 } else {
+                    // Only the darts looked up need their flags: those of the volumes
+                    // replaced, which hold both sides of every face replaced.
+                    let b = Aabb::of(darts.iter().map(|&x| shared.point(x)));
+                    out.corners.extend(box_corner_darts(shared, darts, &b));
                     out.volumes.push(d);
                     out.faces.extend(darts.iter().copied().filter(|&x| is_named_wide_face(shared, x)));
                 }
