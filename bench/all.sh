@@ -20,6 +20,8 @@ run map_building bench/compare.sh "$RUNS"
 run signatures bench/signatures.sh 5 10
 run s3 bench/s3.sh "$OUT/s3"
 run authors_setup python3 bench/authors_setup.py --runs "$RUNS"
+run authors_transitions python3 bench/authors_setup.py --runs "$RUNS" --transitions
+run authors_marching_cubes python3 bench/authors_setup.py --runs "$RUNS" --marching-cubes
 run subdivision python3 bench/subdivision.py --runs "$RUNS"
 run recombine python3 bench/recombine.py --runs "$RUNS"
 python3 -m pip install --quiet gmsh
