@@ -1,6 +1,8 @@
 //! A bounding-volume hierarchy over the triangles of a surface: which boxes the surface
 //! touches (octree refinement, 2022 §7.1) and the data the winding number needs.
 
+use smallvec::{SmallVec, smallvec};
+
 use super::{cross, sub};
 
 /// Axis-aligned box.
@@ -188,7 +190,8 @@ impl TriangleBvh {
         let c = b.centre();
         let h = b.extent().map(|e| 0.5 * e * (1.0 + 1e-10) + f64::MIN_POSITIVE);
         let grown = Aabb { lo: [0, 1, 2].map(|k| c[k] - h[k]), hi: [0, 1, 2].map(|k| c[k] + h[k]) };
-        let mut stack = vec![0u32];
+        // (a query per octree cell: the walk's stack stays on the call stack)
+        let mut stack: SmallVec<[u32; 64]> = smallvec![0];
         while let Some(i) = stack.pop() {
             let n = &self.nodes[i as usize];
             if !n.bounds.overlaps(&grown) {
