@@ -5,10 +5,10 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use anyhow::{Result, bail};
-use qmesh::apps::{GeneratedKind, conformal, generated_pattern_set};
+use qmesh::apps::conformal;
 use qmesh::build::{CellValues, extract, volume_values};
 use qmesh::io::{Loaded, WriteOptions, read, resolve_format, write_indexed};
-use qmesh::pattern::{FlagRule, PatternKind};
+use qmesh::pattern::PatternKind;
 use serde_json::json;
 
 use super::parse_format;
@@ -37,13 +37,7 @@ pub struct Args {
 pub fn run(a: Args) -> Result<ExitCode> {
     a.output.check_against(&a.input)?;
     let out_format = resolve_format(&a.output.output, None)?;
-    let set = match super::patterns::load_sets(&a.patterns)? {
-        Some(set) => set,
-        None => generated_pattern_set(GeneratedKind::Transitions, FlagRule::Corners)?,
-    };
-    if set.count(PatternKind::Volume) == 0 {
-        bail!("no v-pattern in {}", super::patterns::path_list(&a.patterns));
-    }
+    let set = super::patterns::transition_set(&a.patterns)?;
     let mut phases = crate::phases::Phases::start();
     let mesh = match read(&a.input, parse_format(&a.format)?)? {
         Loaded::Indexed(m) if m.is_volume() => m,

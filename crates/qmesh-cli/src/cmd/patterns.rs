@@ -5,7 +5,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use anyhow::Result;
-use qmesh::apps::{GeneratedKind, generated_pattern_meshes};
+use qmesh::apps::{GeneratedKind, generated_pattern_meshes, generated_pattern_set};
 use qmesh::build::{BuildOptions, build_map};
 use qmesh::io::{Format, WriteOptions, load_map, write_indexed, write_map};
 use qmesh::pattern::{FlagRule, PatternKind, PatternSet, audit, boundaries_mesh, load_pattern_dir};
@@ -345,6 +345,22 @@ pub fn warn_skipped(set: &PatternSet) {
     for sk in &set.skipped {
         eprintln!("warning: skipped pattern {}: {}", sk.file.display(), sk.reason);
     }
+}
+
+/// The transition patterns of `conformal` and `subdivide --conformal`: the folders
+/// given (the papers' corner flags), or qmesh's generated `transitions` set.
+///
+/// # Errors
+/// As [`merged_sets`], or a set without v-pattern.
+pub fn transition_set(dirs: &[PathBuf]) -> Result<PatternSet> {
+    let set = match load_sets(dirs)? {
+        Some(set) => set,
+        None => generated_pattern_set(GeneratedKind::Transitions, FlagRule::Corners)?,
+    };
+    if set.count(PatternKind::Volume) == 0 {
+        anyhow::bail!("no v-pattern in {}", path_list(dirs));
+    }
+    Ok(set)
 }
 
 /// The `--patterns` folders with the papers' corner flags, or None without any.

@@ -6,14 +6,12 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 use anyhow::{Result, bail};
-use qmesh::apps::{
-    ConformalPhases, GeneratedKind, RootShape, SubdivideOptions, generated_pattern_set, subdivide, transitions_on_map,
-};
+use qmesh::apps::{ConformalPhases, RootShape, SubdivideOptions, subdivide, transitions_on_map};
 use qmesh::build::{ExtractedKinds, extract, non_conformal_faces};
 use qmesh::cmap::{CMap3, Dart};
 use qmesh::geom::TriangleBvh;
 use qmesh::io::{Format, WriteOptions, read_surface, resolve_format, write_indexed};
-use qmesh::pattern::{FlagRule, PatternKind, PatternSet};
+use qmesh::pattern::PatternSet;
 use qmesh::replace::ReplaceReport;
 use serde_json::json;
 
@@ -100,7 +98,8 @@ pub fn run(a: Args) -> Result<ExitCode> {
     // Read before subdividing, so a bad folder stops the run at once; timed with the
     // transitions, as the authors' program times its loading.
     let t = Instant::now();
-    let transition_set = if a.conformal { Some(transition_set(&a.transition_patterns)?) } else { None };
+    let transition_set =
+        if a.conformal { Some(super::patterns::transition_set(&a.transition_patterns)?) } else { None };
     let loading = t.elapsed().as_secs_f64();
     let mut s = subdivide(&bvh, &opts, set.as_ref(), &|l| pb.set_position(u64::from(l) - 1))?;
     pb.finish_and_clear();
@@ -169,18 +168,6 @@ pub fn run(a: Args) -> Result<ExitCode> {
     }
     let conformal_ok = conformal.as_ref().is_none_or(Transitions::is_conformal);
     Ok(if validity == Some(false) || !conformal_ok { ExitCode::from(1) } else { ExitCode::SUCCESS })
-}
-
-/// The transition patterns of `--conformal`: the folders given, or the generated set.
-fn transition_set(dirs: &[PathBuf]) -> Result<PatternSet> {
-    let set = match super::patterns::load_sets(dirs)? {
-        Some(set) => set,
-        None => generated_pattern_set(GeneratedKind::Transitions, FlagRule::Corners)?,
-    };
-    if set.count(PatternKind::Volume) == 0 {
-        bail!("no v-pattern in {}", super::patterns::path_list(dirs));
-    }
-    Ok(set)
 }
 
 /// What `--conformal` did on the subdivision's map.
