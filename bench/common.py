@@ -12,10 +12,11 @@ Q = os.path.join(ROOT, "target", "release", "qmesh")
 MEASURE = os.path.join(ROOT, "bench", "measure.py")
 
 
-def sh(*cmd, cwd=None, timeout=None):
-    """The stdout of `cmd`; exits with its stderr when it fails or outlives `timeout` s."""
+def sh(*cmd, cwd=None, timeout=None, env=None):
+    """The stdout of `cmd` (run with `env` when given); exits with its stderr when it
+    fails or outlives `timeout` s."""
     try:
-        r = subprocess.run(cmd, capture_output=True, text=True, cwd=cwd, timeout=timeout)
+        r = subprocess.run(cmd, capture_output=True, text=True, cwd=cwd, timeout=timeout, env=env)
     except subprocess.TimeoutExpired:
         sys.exit(f"failed: {' '.join(cmd[:2])} …\ntimed out after {timeout} s")
     if r.returncode != 0:

@@ -89,8 +89,10 @@ impl CMap3 {
         out
     }
 
-    /// The local checks over all darts, in parallel chunks, in dart order.
-    pub(super) fn local_violations_all(&self) -> Vec<Violation> {
+    /// The checks of [`CMap3::is_valid`] that read a dart and its neighbours only, over
+    /// all darts in parallel chunks, in dart order: all of them but the vertex census
+    /// (for a map just built, whose builder gave each vertex orbit its own id).
+    pub fn local_violations_all(&self) -> Vec<Violation> {
         use rayon::prelude::*;
         const CHUNK: usize = 1 << 16;
         let n = self.dart_capacity();

@@ -173,11 +173,13 @@ pub fn read_moka_with_flags(path: &Path) -> IoResult<(CMap3, Vec<crate::cmap::Da
 /// # Errors
 /// A folder or a missing file, an unknown format, or what the format's reader finds.
 pub fn read(path: &Path, forced: Option<Format>) -> IoResult<Loaded> {
-    if path.is_dir() {
-        return Err(IoError::unsupported(path, "this is a folder, not a mesh file"));
-    }
-    let format = resolve_format(path, forced)?;
-    let data = std::fs::read(path).map_err(|e| IoError::io(path, e))?;
+    // A folder is told from the failure only (no `stat` per file read).
+    let folder = || IoError::unsupported(path, "this is a folder, not a mesh file");
+    let format = resolve_format(path, forced).map_err(|e| if path.is_dir() { folder() } else { e })?;
+    let data = std::fs::read(path).map_err(|e| match e.kind() {
+        std::io::ErrorKind::IsADirectory => folder(),
+        _ => IoError::io(path, e),
+    })?;
     parse(path, &data, format)
 }
 

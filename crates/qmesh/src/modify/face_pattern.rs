@@ -29,9 +29,10 @@ impl FacePattern {
         let interior: Vec<Dart> = pm.darts().filter(|&x| !pm.is_free(x, 2)).collect();
         let index: FxHashMap<Dart, u32> = interior.iter().enumerate().map(|(i, &d)| (d, i as u32)).collect();
         let preserved: FxHashMap<u32, u32> = p.cycle.iter().map(|&b| (pm.vertex_of(b), boundary[&b])).collect();
-        let created: FxHashMap<u32, u32> = p.interior.iter().enumerate().map(|(i, iv)| (iv.vertex, i as u32)).collect();
+        let created: FxHashMap<u32, u32> =
+            p.interior().iter().enumerate().map(|(i, iv)| (iv.vertex, i as u32)).collect();
         let weights: Vec<Vec<(u32, f64)>> = p
-            .interior
+            .interior()
             .iter()
             .map(|iv| iv.weights.iter().map(|&(v, w)| preserved.get(&v).map(|&l| (l, w))).collect())
             .collect::<Option<_>>()?;

@@ -37,9 +37,10 @@ impl VolumePattern {
             Some(n) => index.get(&n).map_or_else(|| Link::Matched(label[&n]), |&i| Link::New(i)),
         };
         let preserved: FxHashMap<u32, u32> = pw.darts.iter().map(|&d| (pm.vertex_of(d), label[&d])).collect();
-        let created: FxHashMap<u32, u32> = p.interior.iter().enumerate().map(|(i, iv)| (iv.vertex, i as u32)).collect();
+        let created: FxHashMap<u32, u32> =
+            p.interior().iter().enumerate().map(|(i, iv)| (iv.vertex, i as u32)).collect();
         let weights: Option<Vec<Vec<(u32, f64)>>> = p
-            .interior
+            .interior()
             .iter()
             .map(|iv| iv.weights.iter().map(|&(v, w)| preserved.get(&v).map(|&l| (l, w))).collect())
             .collect();

@@ -1,6 +1,8 @@
 //! Flag rules for patterns (2022 §3, `shared/data/patterns/cgal/FORMAT.md`): which
 //! boundary darts are flagged, computed from the geometry.
 
+use rustc_hash::FxHashMap;
+
 use crate::cmap::{CMap3, Dart, Mark};
 use crate::geom::{cross, dot, face_normal, sub};
 use crate::signature::{Surface, pattern_face_boundary};
@@ -34,6 +36,19 @@ fn not_parallel(a: [f64; 3], b: [f64; 3]) -> bool {
     na > 0.0 && nb > 0.0 && (norm(cross(a, b)) > SIN_TOL * na * nb || dot(a, b) < 0.0)
 }
 
+/// Whether three of the directions `ns` are independent (their triple product exceeds
+/// the tolerance). The product is alternating, so each unordered triple is tried once.
+fn spans_space(ns: &[[f64; 3]]) -> bool {
+    let norms: smallvec::SmallVec<[f64; 16]> = ns.iter().map(|&a| norm(a)).collect();
+    (0..ns.len()).any(|i| {
+        (i + 1..ns.len()).any(|j| {
+            let ab = cross(ns[i], ns[j]);
+            let tol = SIN_TOL * norms[i] * norms[j];
+            (j + 1..ns.len()).any(|k| dot(ab, ns[k]).abs() > tol * norms[k])
+        })
+    })
+}
+
 /// Flags with `mark` the boundary darts that start at a geometric corner of the
 /// pattern's boundary: for an f-pattern, where consecutive boundary edges are not
 /// aligned; for a v-pattern, darts on a feature edge (between non-coplanar boundary
@@ -59,25 +74,33 @@ pub fn flag_corners_on(map: &mut CMap3, mark: Mark, boundary: &[Dart], face_patt
             .map(|i| cycle[i])
             .collect()
     } else {
-        let normal: rustc_hash::FxHashMap<Dart, [f64; 3]> =
-            boundary.iter().map(|&d| (d, face_normal(map, d))).collect();
-        // Normals of the boundary faces around each vertex.
-        let mut around: rustc_hash::FxHashMap<u32, Vec<[f64; 3]>> = Default::default();
+        // One normal per boundary face, shared by the face's darts.
+        let mut normal: FxHashMap<Dart, [f64; 3]> = FxHashMap::default();
+        normal.reserve(boundary.len());
         for &d in boundary {
-            around.entry(map.vertex_of(d)).or_default().push(normal[&d]);
+            if !normal.contains_key(&d) {
+                let n = face_normal(map, d);
+                let mut x = d;
+                loop {
+                    normal.insert(x, n);
+                    x = map.next(x);
+                    if x == d {
+                        break;
+                    }
+                }
+            }
         }
+        // Normals of the boundary faces around each vertex, grouped by vertex (in
+        // boundary order within a group).
+        let mut around: Vec<(u32, [f64; 3])> = boundary.iter().map(|&d| (map.vertex_of(d), normal[&d])).collect();
+        around.sort_by_key(|&(v, _)| v);
         // A vertex is a corner when three of its faces' normals are independent: decided
-        // once per vertex (the test is cubic in the vertex's faces).
-        let corner: rustc_hash::FxHashMap<u32, bool> = around
-            .iter()
-            .map(|(&v, ns)| {
-                let independent = ns.iter().any(|&a| {
-                    ns.iter().any(|&b| {
-                        let ab = cross(a, b);
-                        ns.iter().any(|&c| dot(ab, c).abs() > SIN_TOL * norm(a) * norm(b) * norm(c))
-                    })
-                });
-                (v, independent)
+        // once per vertex.
+        let corner: FxHashMap<u32, bool> = around
+            .chunk_by(|a, b| a.0 == b.0)
+            .map(|group| {
+                let ns: smallvec::SmallVec<[[f64; 3]; 16]> = group.iter().map(|&(_, n)| n).collect();
+                (group[0].0, spans_space(&ns))
             })
             .collect();
         boundary

@@ -4,7 +4,7 @@
 use std::path::Path;
 
 use super::flags::{FlagRule, flag_corners};
-use super::geometry::{interior_coordinates, total_volume};
+use super::geometry::total_volume;
 use super::{Pattern, PatternKind};
 use crate::build::{BuildOptions, build_map};
 use crate::cmap::{CMap3, Dart};
@@ -44,15 +44,26 @@ pub fn load_pattern(path: &Path, rule: FlagRule) -> Result<Pattern, PatternError
     } else {
         read(path, None)?
     };
-    let map = match loaded {
-        Loaded::Map(m) => m,
+    let (map, source) = match loaded {
+        Loaded::Map(m) => (m, Source::AsIs),
         Loaded::Indexed(mesh) => {
-            build_map(mesh, &BuildOptions { fix_orientation: true })
-                .map_err(|cause| IoError::Build { path: path.into(), cause })?
-                .0
+            let (map, ..) = build_map(mesh, &BuildOptions { fix_orientation: true })
+                .map_err(|cause| IoError::Build { path: path.into(), cause })?;
+            (map, Source::Built)
         }
     };
-    pattern_from_map(path, map, rule, &file_flags)
+    pattern_of(path, map, rule, &file_flags, source)
+}
+
+/// Where a pattern's map comes from, which tells what is left to check.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Source {
+    /// `build_map` with `fix_orientation`: every cell has a non-negative volume and
+    /// each vertex orbit its own id.
+    Built,
+    /// A map read or made as is: all checks, and its total signed volume decides the
+    /// orientation.
+    AsIs,
 }
 
 /// Makes a pattern of a map already in memory (generated sets); `name` is what audits
@@ -60,14 +71,22 @@ pub fn load_pattern(path: &Path, rule: FlagRule) -> Result<Pattern, PatternError
 ///
 /// # Errors
 /// As [`load_pattern`], without the I/O part.
-pub fn pattern_from_map(
-    name: &Path,
+pub fn pattern_from_map(name: &Path, map: CMap3, rule: FlagRule, file_flags: &[Dart]) -> Result<Pattern, PatternError> {
+    pattern_of(name, map, rule, file_flags, Source::AsIs)
+}
+
+fn pattern_of(
+    path: &Path,
     mut map: CMap3,
     rule: FlagRule,
     file_flags: &[Dart],
+    source: Source,
 ) -> Result<Pattern, PatternError> {
-    let path = name;
-    if let Some(v) = map.is_valid().first() {
+    let violations = match source {
+        Source::Built => map.local_violations_all(),
+        Source::AsIs => map.is_valid(),
+    };
+    if let Some(v) = violations.first() {
         return Err(invalid(path, format!("the pattern is not a valid map: {v}")));
     }
     let two_free: Vec<Dart> = map.darts().filter(|&d| map.is_free(d, 2)).collect();
@@ -105,7 +124,7 @@ pub fn pattern_from_map(
         }
         (PatternKind::Volume, surface)
     };
-    finish(path, map, kind, boundary, rule, file_flags)
+    finish(path, map, kind, boundary, rule, file_flags, source)
 }
 
 fn finish(
@@ -115,8 +134,9 @@ fn finish(
     boundary: Vec<Dart>,
     rule: FlagRule,
     file_flags: &[Dart],
+    source: Source,
 ) -> Result<Pattern, PatternError> {
-    if kind == PatternKind::Volume && total_volume(&map) < 0.0 {
+    if kind == PatternKind::Volume && source == Source::AsIs && total_volume(&map) < 0.0 {
         // Moka files keep an arbitrary orientation class: bring the pattern to the map
         // convention so that its cells keep positive volumes once inserted.
         map.reverse_orientation();
@@ -139,19 +159,23 @@ fn finish(
         PatternKind::Volume => volume_signature_from(&map, Surface::PatternBoundary, flags, boundary[0])
             .ok_or_else(|| invalid(path, "the boundary surface is open"))?,
     };
-    let interior = interior_coordinates(&map, kind, &boundary);
-    let cycle = if kind == PatternKind::Face { boundary.clone() } else { Vec::new() };
+    let (first, boundary_darts) = (boundary[0], boundary.len());
+    let (cycle, surface) = match kind {
+        PatternKind::Face => (boundary, Vec::new()),
+        PatternKind::Volume => (Vec::new(), boundary),
+    };
     Ok(Pattern {
         file: path.to_path_buf(),
         kind,
-        boundary: boundary[0],
-        boundary_darts: boundary.len(),
+        boundary: first,
+        boundary_darts,
         map,
         flags: mark,
         signature,
         automorphisms,
         start,
         cycle,
-        interior,
+        surface,
+        interior: Default::default(),
     })
 }

@@ -59,9 +59,24 @@ pub struct Pattern {
     pub start: Dart,
     /// f-patterns: the boundary cycle of 2-free darts, in order from `boundary`.
     pub cycle: Vec<Dart>,
+    /// v-patterns: the boundary surface's darts in traversal order from `boundary`.
+    pub surface: Vec<Dart>,
+    /// See [`Pattern::interior`].
+    interior: std::sync::OnceLock<Vec<InteriorVertex>>,
+}
+
+impl Pattern {
     /// Interior vertices and their mean value coordinates over boundary vertices
-    /// (2022 §5.2), computed once.
-    pub interior: Vec<InteriorVertex>,
+    /// (2022 §5.2), computed on the first call: a set's unused patterns never need them.
+    pub fn interior(&self) -> &[InteriorVertex] {
+        self.interior.get_or_init(|| {
+            let boundary = match self.kind {
+                PatternKind::Face => &self.cycle,
+                PatternKind::Volume => &self.surface,
+            };
+            interior_coordinates(&self.map, self.kind, boundary)
+        })
+    }
 }
 
 /// A vertex inside a pattern, as weights over the pattern's boundary vertices.

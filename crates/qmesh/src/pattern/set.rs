@@ -152,12 +152,21 @@ fn expected_kind(dir: &Path, file: &Path) -> Option<PatternKind> {
 
 fn collect(p: &Path, out: &mut Vec<PathBuf>) {
     if p.is_dir() {
-        if let Ok(rd) = std::fs::read_dir(p) {
-            for e in rd.flatten() {
-                collect(&e.path(), out);
-            }
-        }
+        collect_dir(p, out);
     } else if p.is_file() {
         out.push(p.to_path_buf());
+    }
+}
+
+/// The files under folder `p`, told apart by the folder's own entries (one `stat` per
+/// symbolic link only).
+fn collect_dir(p: &Path, out: &mut Vec<PathBuf>) {
+    let Ok(rd) = std::fs::read_dir(p) else { return };
+    for e in rd.flatten() {
+        match e.file_type() {
+            Ok(t) if t.is_dir() => collect_dir(&e.path(), out),
+            Ok(t) if t.is_file() => out.push(e.path()),
+            _ => collect(&e.path(), out),
+        }
     }
 }

@@ -152,9 +152,8 @@ fn signature_with(
 ) -> Option<(Signature, usize, Dart)> {
     let mut w = VolumeWord::default();
     word_with(map, surface, flags, any, None, label, &mut w)?;
-    let all = std::mem::take(&mut w.darts);
-    let flagged: Vec<Dart> = all.iter().copied().filter(|&d| flags.get(map, d)).collect();
-    let starts = if flagged.is_empty() { all } else { flagged };
+    let flagged: Vec<Dart> = w.darts.iter().copied().filter(|&d| flags.get(map, d)).collect();
+    let starts = if flagged.is_empty() { w.darts.clone() } else { flagged };
     let mut best: Option<(Vec<u32>, Dart)> = None;
     let mut count = 0;
     for &s in &starts {
@@ -162,10 +161,10 @@ fn signature_with(
         if word_with(map, surface, flags, s, bound, label, &mut w).is_none() {
             continue;
         }
-        let full: Vec<u32> = w.word.iter().chain(&w.bits).copied().collect();
-        match best.as_ref().map(|b| full.cmp(&b.0)) {
+        let full = w.word.iter().chain(&w.bits);
+        match best.as_ref().map(|b| full.clone().cmp(&b.0)) {
             None | Some(std::cmp::Ordering::Less) => {
-                best = Some((full, s));
+                best = Some((full.copied().collect(), s));
                 count = 1;
             }
             Some(std::cmp::Ordering::Equal) => count += 1,
