@@ -14,7 +14,11 @@ transition patterns (`subdivide --conformal` / `-create-transitions`): the table
 the cells of each kind, volume replacements and darts of both, and the transitions step
 (qmesh's `transitions.seconds`, pattern loading included / the peer's `Create
 transitions TOTAL`), then the same without loading the patterns (qmesh's `load_seconds`
-/ the peer's `Load transition patterns` subtracted).
+/ the peer's `Load transition patterns` subtracted), and qmesh's step once more with
+the same patterns compiled once before the table (`qmesh patterns compile`, its time
+printed above the table) in the same round-robin.
+
+Step times are medians over the runs of each tool's own report.
 
 With --marching-cubes, qmesh's `marching-cubes SURFACE --levels L` with the authors'
 marching-cubes patterns against the peer's `-marching-cubes`: qmesh's octree has its
@@ -29,6 +33,7 @@ import argparse
 import json
 import os
 import re
+import statistics
 import sys
 
 from common import DATA, MEASURE, Q, ROOT, sh
@@ -93,12 +98,48 @@ def march_row(a, stem, src, level, patterns):
     )
     q, p = [json.loads(line) for line in res.splitlines() if line.strip()]
     qo, po = q["output"], peer_march(p["output"])
+    qo["seconds"] = median(q, lambda o: o["seconds"])
+    po["step"] = median(p, lambda o: peer_march(o)["step"])
     print(f"| {stem} | {level} | {qo['hexahedra']:,} | {qo['faces_replaced']:,} | {qo['volumes_replaced']:,} "
           f"| {qo['polygons']:,} | {po['fqr']:,} | {po['vqr']:,} | {po['faces']:,} "
           f"| {qo['seconds']:.3f} | {po['step']:.3f} | {po['step'] / qo['seconds']:.1f} "
           f"| {q['seconds']:.2f} | {p['seconds']:.2f} | {p['seconds'] / q['seconds']:.1f} "
           f"| {q['peak_rss_bytes'] / 1e6:.0f} | {p['peak_rss_bytes'] / 1e6:.0f} "
           f"| {p['peak_rss_bytes'] / q['peak_rss_bytes']:.1f} |", flush=True)
+
+
+def transitions_row(a, stem, off, level, patterns, transitions, compiled):
+    out = os.path.join(a.out, f"{stem}_L{level}_box.vtk")
+    base = [Q, "subdivide", off, "--root", "box", "--init", str(a.init), "--levels", str(level),
+            "--remove-outside", "--conformal", "-o", out, "--json", "--force", "--transition-patterns"]
+    res = sh(
+        sys.executable, MEASURE, str(a.runs),
+        "qmesh", "--", *base, transitions, "---",
+        "compiled", "--", *base, compiled, "---",
+        "peer", "--", PEER, "-patterns", patterns, "-lmax", str(level), "-init", str(a.init),
+        "-create-transitions", off,
+    )
+    q, c, p = [json.loads(line) for line in res.splitlines() if line.strip()]
+    qo, po = q["output"], peer_transitions(p["output"])
+    qt = qo["transitions"]
+    if c["output"]["transitions"]["cell_types"] != qt["cell_types"]:
+        sys.exit(f"{stem} L{level}: the compiled set gives other cells than its folders")
+    q_step, q_load, c_step = (median(x, lambda o: o["transitions"][k])
+                              for x, k in ((q, "seconds"), (q, "load_seconds"), (c, "seconds")))
+    p_step, p_load = (median(p, lambda o: peer_transitions(o)[k]) for k in ("step", "load"))
+    print(f"| {stem} | {level} | {cells(qt['cell_types'])} | {qt['volumes_replaced']:,} | {qo['darts']:,} "
+          f"| {cells(po['cells'])} | {po['vqr']:,} | {po['darts']:,} "
+          f"| {q_step:.3f} | {p_step:.3f} | {p_step / q_step:.1f} "
+          f"| {q_step - q_load:.3f} | {p_step - p_load:.3f} | {(p_step - p_load) / (q_step - q_load):.1f} "
+          f"| {c_step:.3f} | {p_step / c_step:.1f} "
+          f"| {q['seconds']:.2f} | {p['seconds']:.2f} | {p['seconds'] / q['seconds']:.1f} "
+          f"| {q['peak_rss_bytes'] / 1e6:.0f} | {p['peak_rss_bytes'] / 1e6:.0f} "
+          f"| {p['peak_rss_bytes'] / q['peak_rss_bytes']:.1f} |", flush=True)
+
+
+def median(measured, figure):
+    """The median over the runs of `figure` of a command's report (bench/measure.py)."""
+    return statistics.median(figure(o) for o in measured["outputs"])
 
 
 def cells(k):
@@ -120,6 +161,7 @@ def main():
     os.makedirs(a.out, exist_ok=True)
     sh("cargo", "build", "--release", "-q", "--manifest-path", os.path.join(ROOT, "Cargo.toml"))
     patterns = os.path.join(DATA, "patterns", "cgal")
+    compiled = None
     transitions = ",".join(os.path.join(patterns, p) for p in ("hexa-325-patterns", "square-5-patterns"))
     if a.marching_cubes:
         print("| surface | level | qmesh hexahedra | #fqr | #vqr | surface polygons | peer #fqr (queried) | #vqr (queried) "
@@ -127,12 +169,16 @@ def main():
               "| qmesh MB | peer MB | memory ratio |")
         print("|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|")
     elif a.transitions:
+        compiled = os.path.join(a.out, "transitions.qps")
+        c = json.loads(sh(Q, "patterns", "compile", transitions, "-o", compiled, "--json"))
+        print(f"Compiled the {c['f_patterns']} + {c['v_patterns']} transition patterns once: "
+              f"{c['seconds']:.3f} s, {c['bytes']:,} bytes.\n")
         print("| surface | level | qmesh hex / prism / pyramid / tet / other | #vqr | darts "
               "| peer hex / prism / pyramid / tet / other | #vqr | darts "
               "| qmesh transitions s | peer transitions s | step ratio | without loading: qmesh s | peer s | ratio "
-              "| qmesh wall s | peer wall s | wall ratio "
+              "| compiled set: qmesh s | step ratio | qmesh wall s | peer wall s | wall ratio "
               "| qmesh MB | peer MB | memory ratio |")
-        print("|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|")
+        print("|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|")
     else:
         print("| surface | level | qmesh volumes | generic | #fqr | #vqr | peer volumes | generic | #fqr | #vqr "
           "| qmesh step s | peer step s | step ratio | qmesh wall s | peer wall s | wall ratio "
@@ -149,30 +195,20 @@ def main():
             if a.marching_cubes:
                 march_row(a, stem, off, level, patterns)
                 continue
+            if a.transitions:
+                transitions_row(a, stem, off, level, patterns, transitions, compiled)
+                continue
             out = os.path.join(a.out, f"{stem}_L{level}_box.vtk")
-            extra = (["--conformal", "--transition-patterns", transitions], ["-create-transitions"]) \
-                if a.transitions else ([], [])
             res = sh(
                 sys.executable, MEASURE, str(a.runs),
                 "qmesh", "--", Q, "subdivide", off, "--root", "box", "--init", str(a.init),
-                "--levels", str(level), "--remove-outside", *extra[0], "-o", out, "--json", "--force", "---",
-                "peer", "--", PEER, "-patterns", patterns, "-lmax", str(level), "-init", str(a.init),
-                *extra[1], off,
+                "--levels", str(level), "--remove-outside", "-o", out, "--json", "--force", "---",
+                "peer", "--", PEER, "-patterns", patterns, "-lmax", str(level), "-init", str(a.init), off,
             )
             q, p = [json.loads(line) for line in res.splitlines() if line.strip()]
-            if a.transitions:
-                qo, po = q["output"], peer_transitions(p["output"])
-                qt = qo["transitions"]
-                print(f"| {stem} | {level} | {cells(qt['cell_types'])} | {qt['volumes_replaced']:,} | {qo['darts']:,} "
-                      f"| {cells(po['cells'])} | {po['vqr']:,} | {po['darts']:,} "
-                      f"| {qt['seconds']:.3f} | {po['step']:.3f} | {po['step'] / qt['seconds']:.1f} "
-                      f"| {qt['seconds'] - qt['load_seconds']:.3f} | {po['step'] - po['load']:.3f} "
-                      f"| {(po['step'] - po['load']) / (qt['seconds'] - qt['load_seconds']):.1f} "
-                      f"| {q['seconds']:.2f} | {p['seconds']:.2f} | {p['seconds'] / q['seconds']:.1f} "
-                      f"| {q['peak_rss_bytes'] / 1e6:.0f} | {p['peak_rss_bytes'] / 1e6:.0f} "
-                      f"| {p['peak_rss_bytes'] / q['peak_rss_bytes']:.1f} |", flush=True)
-                continue
             qo, po = q["output"], peer_figures(p["output"])
+            qo["seconds"] = median(q, lambda o: o["seconds"])
+            po["step"] = median(p, lambda o: peer_figures(o)["step"])
             print(f"| {stem} | {level} | {qo['volumes']:,} | {qo['with_hanging_vertices']:,} "
                   f"| {qo['faces_replaced']:,} | {qo['volumes_replaced']:,} "
                   f"| {po['volumes']:,} | {po['generic']:,} | {po['fqr']:,} | {po['vqr']:,} "

@@ -4,8 +4,9 @@
 usage: measure.py RUNS LABEL -- CMD... [--- LABEL -- CMD...]...
 The commands run round-robin (one run of each, RUNS times), so a shared machine that
 speeds up or slows down during the measurement affects them alike. Prints one JSON
-object per command with the median seconds, the max peak RSS, and the command's own
-stdout (parsed when it is JSON) from one extra run.
+object per command with the median seconds, the max peak RSS, the command's own
+stdout (parsed when it is JSON) of every run (`outputs`, to take medians of the times
+a command reports itself) and of its median run (`output`).
 
 Peak RSS comes from GNU time (/usr/bin/time), which forks the command from its own
 small process: a command forked from Python directly would be charged Python's
@@ -23,22 +24,21 @@ GNU_TIME = "/usr/bin/time"
 
 
 def run_once(cmd):
-    """Wall seconds and peak RSS bytes of one run of cmd (output discarded)."""
+    """Wall seconds, peak RSS bytes and stdout of one run of cmd."""
     if not os.access(GNU_TIME, os.X_OK):
         sys.exit(f"{GNU_TIME} (GNU time, Debian package `time`) is needed for peak memory")
     with tempfile.NamedTemporaryFile("r") as report:
         t = time.perf_counter()
         done = subprocess.run([GNU_TIME, "-f", "%M", "-o", report.name, *cmd],
-                              stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+                              stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True)
         wall = time.perf_counter() - t
         if done.returncode != 0:
             sys.exit(f"command failed: {' '.join(cmd)}")
         kib = int(report.read().split()[-1])
-    return wall, kib * 1024
+    return wall, kib * 1024, parsed(done.stdout)
 
 
-def output_of(cmd):
-    out = subprocess.run(cmd, capture_output=True, text=True).stdout
+def parsed(out):
     try:
         return json.loads(out)
     except ValueError:
@@ -56,14 +56,18 @@ def main():
             cur.append(a)
     groups.append(cur)
     walls = [[] for _ in groups]
+    outputs = [[] for _ in groups]
     rss = [0 for _ in groups]
     for _ in range(runs):
         for k, g in enumerate(groups):
-            w, m = run_once(g[2:])
+            w, m, out = run_once(g[2:])
             walls[k].append(w)
+            outputs[k].append(out)
             rss[k] = max(rss[k], m)
     for k, g in enumerate(groups):
-        r = {"seconds": statistics.median(walls[k]), "peak_rss_bytes": rss[k], "output": output_of(g[2:]), "label": g[0]}
+        median_run = sorted(range(runs), key=lambda i: walls[k][i])[runs // 2]
+        r = {"seconds": statistics.median(walls[k]), "peak_rss_bytes": rss[k], "output": outputs[k][median_run],
+             "outputs": outputs[k], "label": g[0]}
         print(json.dumps(r))
 
 

@@ -6,6 +6,7 @@ use std::process::Command;
 use qmesh::cmap::CMap3;
 use qmesh::io::{WriteOptions, write_map};
 
+mod compiled_sets;
 mod examples;
 mod first_hour;
 

@@ -18,7 +18,7 @@ use qmesh::build::{BuildOptions, IndexedMesh, build_surface_map, build_volume_ma
 use qmesh::geom::TriangleBvh;
 use qmesh::io::LoadedMap;
 use qmesh::modify::{load_rules, run_rules};
-use qmesh::pattern::{FlagRule, PatternSet, load_pattern_dir};
+use qmesh::pattern::{FlagRule, PatternSet, load_patterns};
 use qmesh::query::Strategy;
 use qmesh::replace::{ReplaceOptions, query_replace};
 use qmesh::report::{InfoReport, QualityReport, ValidityReport};
@@ -238,7 +238,7 @@ fn pattern_set(dirs: &[PathBuf], flags: &str) -> Result<(PatternSet, FlagRule), 
         if !dir.exists() {
             return Err(format!("{}: no such pattern folder or file", dir.display()));
         }
-        load_pattern_dir(dir, rule).patterns.into_iter().for_each(|p| {
+        load_patterns(dir, rule).map_err(|e| e.to_string())?.patterns.into_iter().for_each(|p| {
             set.insert(p);
         });
     }

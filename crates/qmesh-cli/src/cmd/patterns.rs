@@ -8,7 +8,9 @@ use anyhow::Result;
 use qmesh::apps::{GeneratedKind, generated_pattern_meshes, generated_pattern_set};
 use qmesh::build::{BuildOptions, build_map};
 use qmesh::io::{Format, WriteOptions, load_map, write_indexed, write_map};
-use qmesh::pattern::{FlagRule, PatternKind, PatternSet, audit, boundaries_mesh, load_pattern_dir};
+use qmesh::pattern::{
+    FlagRule, PatternKind, PatternSet, audit, boundaries_mesh, load_pattern_dir, load_patterns, write_compiled,
+};
 use qmesh::replace::{ReplaceOptions, Uncovered, query_replace};
 use serde_json::json;
 
@@ -51,6 +53,24 @@ pub enum Action {
         /// flags only Moka marks can carry).
         #[arg(long)]
         format: Option<PatternFormat>,
+    },
+    /// Compile pattern folders into one file (`.qps`) that loads in about a millisecond:
+    /// each pattern's map, flags and signature are stored as loading computes them.
+    /// Use the file wherever a pattern folder is accepted; compile again after editing
+    /// the patterns.
+    Compile {
+        /// Pattern folders or files, merged in this order (as `--patterns A,B`).
+        #[arg(required = true, value_delimiter = ',')]
+        dirs: Vec<PathBuf>,
+        /// Output file (`.qps`).
+        #[arg(short, long)]
+        output: PathBuf,
+        /// Pattern flags the set is compiled with; the commands using it must flag
+        /// patterns the same way (`corners`: conformal, subdivide, replace by default).
+        #[arg(long, default_value = "corners")]
+        flags: Flags,
+        #[command(flatten)]
+        report: super::ReportArgs,
     },
     /// Write the boundary of every v-pattern as one polyhedral cell (side by side), e.g.
     /// to look at the configurations a set covers or to benchmark matching.
@@ -96,6 +116,7 @@ pub fn run(a: Args) -> Result<ExitCode> {
     let (dir, as_json, flags, against, split_edges) = match a.action {
         Action::Audit { dir, json, flags, against, split_edges } => (dir, json, flags, against, split_edges),
         Action::Boundaries { dir, output, copies } => return boundaries(&dir, &output, copies),
+        Action::Compile { dirs, output, flags, report } => return compile(&dirs, &output, flags.into(), &report),
         Action::Generate { kind, output, format } => return generate(kind, &output, format),
     };
     let t = std::time::Instant::now();
@@ -184,6 +205,36 @@ fn boundaries(dir: &std::path::Path, output: &std::path::Path, copies: usize) ->
     write_indexed(output, &mesh, Format::Vtk, &WriteOptions::default())?;
     let n = mesh.nb_cells();
     println!("wrote {} ({n} cells, the boundaries of {} v-patterns)", output.display(), set.count(PatternKind::Volume));
+    Ok(ExitCode::SUCCESS)
+}
+
+/// `qmesh patterns compile DIR... -o SET.qps`: the merged set of `dirs`, stored as
+/// loading computes it.
+fn compile(dirs: &[PathBuf], output: &std::path::Path, rule: FlagRule, report: &super::ReportArgs) -> Result<ExitCode> {
+    let t = std::time::Instant::now();
+    let set = merged_sets(dirs, rule)?;
+    warn_skipped(&set);
+    let load_seconds = t.elapsed().as_secs_f64();
+    let bytes = write_compiled(&set, rule, output)?;
+    let (faces, volumes) = (set.count(PatternKind::Face), set.count(PatternKind::Volume));
+    if report.json {
+        let j = json!({
+            "output": output.display().to_string(),
+            "f_patterns": faces,
+            "v_patterns": volumes,
+            "skipped": set.skipped.len(),
+            "bytes": bytes,
+            "load_seconds": load_seconds,
+            "seconds": t.elapsed().as_secs_f64(),
+        });
+        println!("{}", serde_json::to_string_pretty(&j)?);
+    } else if !report.quiet {
+        println!(
+            "wrote {} ({faces} f-patterns, {volumes} v-patterns, {} skipped, {bytes} bytes)",
+            output.display(),
+            set.skipped.len()
+        );
+    }
     Ok(ExitCode::SUCCESS)
 }
 
@@ -301,18 +352,16 @@ fn generate_marching_cubes(dir: &std::path::Path, format: PatternFormat) -> Resu
     Ok(ExitCode::SUCCESS)
 }
 
-/// The patterns of the given folders with corner flags, or None when there are none
-/// (the command's generated set applies). Fails when folders hold no usable pattern.
-/// The patterns of `dir` (a folder searched recursively, or one file), which must
-/// exist: a mistyped folder is an error, not an empty set.
+/// The patterns of `dir` (a folder searched recursively, one pattern file, or a
+/// compiled set), which must exist: a mistyped folder is an error, not an empty set.
 ///
 /// # Errors
-/// When `dir` does not exist.
+/// When `dir` does not exist, or is a compiled set that cannot be read.
 pub fn pattern_dir(dir: &std::path::Path, rule: FlagRule) -> Result<PatternSet> {
     if !dir.exists() {
         anyhow::bail!("{}: no such pattern folder or file", dir.display());
     }
-    Ok(load_pattern_dir(dir, rule))
+    Ok(load_patterns(dir, rule)?)
 }
 
 /// Paths as a person reads them in a message.
@@ -326,14 +375,20 @@ pub fn path_list(paths: &[PathBuf]) -> String {
 /// # Errors
 /// A missing folder, or no usable pattern at all.
 pub fn merged_sets(dirs: &[PathBuf], rule: FlagRule) -> Result<PatternSet> {
-    let mut set = PatternSet::default();
+    let mut set: Option<PatternSet> = None;
     for dir in dirs {
         let s = pattern_dir(dir, rule)?;
-        set.skipped.extend(s.skipped);
-        s.patterns.into_iter().for_each(|p| {
-            set.insert(p);
-        });
+        match &mut set {
+            None => set = Some(s),
+            Some(all) => {
+                all.skipped.extend(s.skipped);
+                s.patterns.into_iter().for_each(|p| {
+                    all.insert(p);
+                });
+            }
+        }
     }
+    let set = set.unwrap_or_default();
     if set.patterns.is_empty() {
         anyhow::bail!("no usable pattern in {}", path_list(dirs));
     }

@@ -206,31 +206,31 @@ impl CMap3 {
     /// when `edges` is set.
     fn vertex_pass(&self, count: &[u32], first: &[u32], edges: bool) -> VertexTally {
         let ids = count.len();
-        let tallies: Vec<VertexTally> = (0..ids.div_ceil(VERTEX_CHUNK))
-            .into_par_iter()
-            .map_init(
-                || Scratch::new(self),
-                |scratch, k| {
-                    let mut t = VertexTally::default();
-                    for v in k * VERTEX_CHUNK..((k + 1) * VERTEX_CHUNK).min(ids) {
-                        let Some(start) = Dart::from_raw(first[v]) else { continue };
-                        let orbit = scratch.collect(self, start, Orbit::Vertex);
-                        if orbit.len() != count[v] as usize {
-                            t.shared_id = true;
-                            return t;
-                        }
-                        t.vertices += 1;
-                        for &x in orbit.iter().filter(|_| edges) {
-                            if let Some(other) = self.edge_counted_at(x.raw()) {
-                                t.edges += 1;
-                                t.links.push((v as u32, other));
-                            }
-                        }
+        let chunk = |scratch: &mut Scratch, k: usize| {
+            let mut t = VertexTally::default();
+            for v in k * VERTEX_CHUNK..((k + 1) * VERTEX_CHUNK).min(ids) {
+                let Some(start) = Dart::from_raw(first[v]) else { continue };
+                let orbit = scratch.collect(self, start, Orbit::Vertex);
+                if orbit.len() != count[v] as usize {
+                    t.shared_id = true;
+                    return t;
+                }
+                t.vertices += 1;
+                for &x in orbit.iter().filter(|_| edges) {
+                    if let Some(other) = self.edge_counted_at(x.raw()) {
+                        t.edges += 1;
+                        t.links.push((v as u32, other));
                     }
-                    t
-                },
-            )
-            .collect();
+                }
+            }
+            t
+        };
+        let tallies: Vec<VertexTally> = if ids <= VERTEX_CHUNK {
+            // One chunk (small maps, e.g. patterns): no hand-over to the thread pool.
+            vec![chunk(&mut Scratch::new(self), 0)]
+        } else {
+            (0..ids.div_ceil(VERTEX_CHUNK)).into_par_iter().map_init(|| Scratch::new(self), chunk).collect()
+        };
         let mut total = VertexTally::default();
         for t in tallies {
             total.vertices += t.vertices;

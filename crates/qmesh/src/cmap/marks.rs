@@ -15,6 +15,11 @@ impl Mark {
     fn bit(self) -> u32 {
         1 << self.0
     }
+
+    /// Which of the 32 marks this is (to store it; see [`CMap3::reserved_mark`]).
+    pub fn index(self) -> u8 {
+        self.0
+    }
 }
 
 impl CMap3 {
@@ -42,6 +47,11 @@ impl CMap3 {
         let m = Mark(free as u8);
         self.clear_mark(m);
         Ok(m)
+    }
+
+    /// Mark number `index` if this map has it reserved (a mark read back from a file).
+    pub fn reserved_mark(&self, index: u8) -> Option<Mark> {
+        (index < 32 && self.used_marks & (1 << index) != 0).then_some(Mark(index))
     }
 
     /// Releases a mark (its bits are cleared on the next reservation).

@@ -20,6 +20,7 @@ mod remove;
 mod sew;
 mod split;
 mod storage;
+mod tables;
 mod validity;
 
 pub use bitset::BitSet;
@@ -31,4 +32,5 @@ pub use error::MapError;
 pub use marks::Mark;
 pub use orbit::{Cells, Orbit, OrbitWalker, Visited, walk_orbit};
 pub use storage::CMap3;
+pub use tables::MapTables;
 pub use validity::Violation;

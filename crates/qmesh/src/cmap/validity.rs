@@ -96,6 +96,10 @@ impl CMap3 {
         use rayon::prelude::*;
         const CHUNK: usize = 1 << 16;
         let n = self.dart_capacity();
+        if n <= CHUNK {
+            // Small maps (patterns): no hand-over to the thread pool.
+            return self.local_violations(0..n);
+        }
         let chunks: Vec<std::ops::Range<usize>> =
             (0..n).step_by(CHUNK).map(|s| s..n.min(s.saturating_add(CHUNK))).collect();
         chunks.into_par_iter().map(|c| self.local_violations(c)).collect::<Vec<_>>().concat()

@@ -3,6 +3,7 @@
 
 mod audit;
 mod boundaries;
+mod compiled;
 mod flags;
 mod geometry;
 mod load;
@@ -11,6 +12,7 @@ mod source;
 
 pub use audit::{Audit, AuditEntry, audit};
 pub use boundaries::boundaries_mesh;
+pub use compiled::{COMPILED_EXTENSION, is_compiled_set, load_patterns, read_compiled, write_compiled};
 pub use flags::{FlagRule, flag_corners, flag_corners_on};
 pub use geometry::interior_coordinates;
 pub use load::{PatternError, load_pattern, pattern_from_map};
