@@ -20,12 +20,11 @@ printed above the table) in the same round-robin.
 
 Step times are medians over the runs of each tool's own report.
 
-With --marching-cubes, qmesh's `marching-cubes SURFACE --levels L` with the authors'
-marching-cubes patterns against the peer's `-marching-cubes`: qmesh's octree has its
-cube root (the crossed cells, all touched by the surface and so of level L in both
-trees, are the same cells only where the roots agree), so the table gives each tool's
-own counts, the march step (qmesh's `seconds`: split, replace, surface / the peer's
-`Compute marching cube TOTAL`), wall time and memory.
+With --marching-cubes, qmesh's `marching-cubes SURFACE --root box --init X --levels L`
+with the authors' marching-cubes patterns against the peer's `-marching-cubes`: the same
+octree, so the same crossed cells; the table gives both tools' counts, the march step
+(qmesh's `seconds`: split, replace, surface / the peer's `Compute marching cube
+TOTAL`), wall time and memory.
 
 usage: bench/authors_setup.py [--runs N] [--levels 5,6,7] [--init X] [--transitions | --marching-cubes]
                               [--out DIR] [SURFACE...]"""
@@ -91,7 +90,8 @@ def march_row(a, stem, src, level, patterns):
     out = os.path.join(a.out, f"{stem}_L{level}_mc.off")
     res = sh(
         sys.executable, MEASURE, str(a.runs),
-        "qmesh", "--", Q, "marching-cubes", src, "--levels", str(level), "--patterns",
+        "qmesh", "--", Q, "marching-cubes", src, "--root", "box", "--init", str(a.init), "--levels", str(level),
+        "--patterns",
         os.path.join(patterns, "marching-cubes"), "-o", out, "--json", "--force", "---",
         "peer", "--", PEER, "-patterns", patterns, "-lmax", str(level), "-init", str(a.init),
         "-marching-cubes", src,
@@ -164,8 +164,8 @@ def main():
     compiled = None
     transitions = ",".join(os.path.join(patterns, p) for p in ("hexa-325-patterns", "square-5-patterns"))
     if a.marching_cubes:
-        print("| surface | level | qmesh hexahedra | #fqr | #vqr | surface polygons | peer #fqr (queried) | #vqr (queried) "
-              "| faces | qmesh march s | peer march s | step ratio | qmesh wall s | peer wall s | wall ratio "
+        print("| surface | level | qmesh hexahedra | #fqr | #vqr | surface polygons | peer #fqr | #vqr "
+              "| faces (2-cells) | qmesh march s | peer march s | step ratio | qmesh wall s | peer wall s | wall ratio "
               "| qmesh MB | peer MB | memory ratio |")
         print("|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|")
     elif a.transitions:

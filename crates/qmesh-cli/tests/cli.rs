@@ -244,14 +244,36 @@ fn subdivide_conformal_equals_subdivide_then_conformal() {
     assert!(code != 0 && err.contains("--direct"), "{err}");
 }
 
+/// The shared data folder ($QMESH_DATA, default ../shared/data).
+fn data_dir() -> PathBuf {
+    std::env::var_os("QMESH_DATA")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared/data"))
+}
+
+/// With the authors' set-up and patterns, `marching-cubes` replaces the cells the
+/// authors' program replaces (`cgal_hexa_subdivision -lmax 5 -init 1 -marching-cubes`,
+/// bunny: 8,136 faces and 4,062 volumes).
+#[cfg_attr(not(qmesh_data), ignore = "needs the shared data folder ($QMESH_DATA)")]
+#[test]
+fn marching_cubes_gives_the_authors_counts() {
+    let data = data_dir();
+    let s = |p: &PathBuf| p.to_str().unwrap().to_string();
+    let (bunny, patterns) = (data.join("surface/bunny.off"), data.join("patterns/cgal/marching-cubes"));
+    let out = temp("mc-bunny.off");
+    let args = ["marching-cubes", &s(&bunny), "--root", "box", "--levels", "5", "--patterns", &s(&patterns)];
+    let j = json_of(&[&args[..], &["-o", &s(&out), "--json"]].concat());
+    let counts = [&j["faces_replaced"], &j["volumes_replaced"], &j["open_edges"], &j["unmatched_volumes"]];
+    assert_eq!(counts.map(|v| v.as_u64().unwrap()), [8_136, 4_062, 0, 0], "{j}");
+    assert_eq!((j["root"].as_str(), j["init"].as_u64()), (Some("box"), Some(1)));
+}
+
 /// With the authors' set-up and patterns, `subdivide --conformal` gives the authors'
 /// program's figures (`cgal_hexa_subdivision -lmax 6 -create-transitions`, bunny).
 #[cfg_attr(not(qmesh_data), ignore = "needs the shared data folder ($QMESH_DATA)")]
 #[test]
 fn subdivide_conformal_gives_the_authors_counts() {
-    let data = std::env::var_os("QMESH_DATA")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared/data"));
+    let data = data_dir();
     let s = |p: &PathBuf| p.to_str().unwrap().to_string();
     let patterns = format!(
         "{},{}",

@@ -3,7 +3,9 @@
 
 mod common;
 
-use qmesh::apps::{McFlags, marching_cubes_field, mc_face_patterns, mc_pattern_set, mc_volume_patterns, triangulate};
+use qmesh::apps::{
+    McFlags, RootShape, marching_cubes_field, mc_face_patterns, mc_pattern_set, mc_volume_patterns, triangulate,
+};
 use qmesh::build::{IndexedMesh, build_surface_map};
 use qmesh::pattern::{FlagRule, PatternKind, PatternSet, load_pattern_dir};
 
@@ -116,7 +118,8 @@ fn bunny_surface_through_its_octree() {
     let s = qmesh::io::read_surface(&dir.join("surface/bunny.off"), None).expect("bunny");
     let bvh = qmesh::geom::TriangleBvh::from_polygons(&s.points, (0..s.nb_polygons()).map(|i| s.polygon(i)));
     let (surface, r, hexes) =
-        qmesh::apps::marching_cubes_surface(&bvh, 5, 0.01, &mc_pattern_set(), McFlags::Inside).expect("mc");
+        qmesh::apps::marching_cubes_surface(&bvh, 5, RootShape::Cube, 0.01, &mc_pattern_set(), McFlags::Inside)
+            .expect("mc");
     assert_eq!(hexes, 8576);
     assert_eq!((r.unmatched_faces, r.unmatched_volumes), (0, 0));
     assert_eq!(topology(&surface), (0, 2), "a closed sphere-like surface");
@@ -154,7 +157,8 @@ fn authors_set_covers_every_configuration_and_closes_the_bunny() {
     }
     let s = qmesh::io::read_surface(&dir.join("surface/bunny.off"), None).expect("bunny");
     let bvh = qmesh::geom::TriangleBvh::from_polygons(&s.points, (0..s.nb_polygons()).map(|i| s.polygon(i)));
-    let (surface, r, _) = qmesh::apps::marching_cubes_surface(&bvh, 5, 0.01, &set, McFlags::Corners).unwrap();
+    let (surface, r, _) =
+        qmesh::apps::marching_cubes_surface(&bvh, 5, RootShape::Cube, 0.01, &set, McFlags::Corners).unwrap();
     assert_eq!((r.unmatched_faces, r.unmatched_volumes), (0, 0));
     assert_eq!(topology(&triangulate(&surface)), (0, 2), "closed, as with qmesh's own set");
 }

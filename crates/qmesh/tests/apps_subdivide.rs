@@ -102,7 +102,7 @@ fn bunny_at_level_four_both_ways() {
     // inside: the same cells as removing it from the whole octree at the end.
     let opts = SubdivideOptions { levels: 4, direct: true, remove_outside: true, ..Default::default() };
     let kept = subdivide(&bvh, &opts, None, &|_| {}).expect("subdivide");
-    let mut whole = qmesh::apps::octree_around(&bvh, 4, opts.margin);
+    let mut whole = qmesh::apps::octree_around(&bvh, 4, opts.root, opts.margin);
     assert_eq!(whole.leaves.len(), 1842);
     for c in whole.outside_leaves(&bvh) {
         whole.leaves.remove(&c);

@@ -7,7 +7,7 @@ use std::time::Instant;
 
 use anyhow::Result;
 use qmesh::apps::{
-    GeneratedKind, McFlags, SubdivideOptions, conformal, generated_pattern_set, marching_cubes_field,
+    GeneratedKind, McFlags, RootShape, SubdivideOptions, conformal, generated_pattern_set, marching_cubes_field,
     marching_cubes_surface, mc_pattern_set, subdivide, tet_to_hex, triangulate,
 };
 use qmesh::build::{BuildOptions, IndexedMesh, build_surface_map, build_volume_map, extract};
@@ -70,7 +70,8 @@ pub fn run(a: Args) -> Result<ExitCode> {
 
     // 2. Marching cubes (Algorithm 6) of the torus's octree and of a field.
     let mc = mc_pattern_set();
-    let (surface, r, _) = marching_cubes_surface(&bvh, 5, 0.01, &mc, McFlags::Inside).map_err(anyhow::Error::msg)?;
+    let (surface, r, _) =
+        marching_cubes_surface(&bvh, 5, RootShape::Cube, 0.01, &mc, McFlags::Inside).map_err(anyhow::Error::msg)?;
     let tri = triangulate(&surface);
     let chi = build_surface_map(&tri)
         .map(|(m, _)| m.count_cells().euler_characteristic(2).to_string())

@@ -24,9 +24,10 @@ pub struct Args {
     /// Octree depth for a surface input.
     #[arg(long, default_value_t = 5)]
     pub levels: u8,
-    /// Root cube side beyond the surface's longest extent (0.01 = 1 %), as `subdivide`.
-    #[arg(long, default_value_t = 0.01)]
-    pub margin: f64,
+    /// The octree's level-0 cells, as `subdivide` (`--root box --init X`: the authors'
+    /// set-up, the same crossed cells as their `-marching-cubes`).
+    #[command(flatten)]
+    pub root: super::OctreeRootArgs,
     /// Raw little-endian float32 field, value of point (i, j, k) at (i·NY + j)·NZ + k.
     #[arg(long, requires = "dims")]
     pub field: Option<PathBuf>,
@@ -159,8 +160,8 @@ pub fn run(a: Args) -> Result<ExitCode> {
         if bvh.is_empty() {
             bail!("{}: no polygon", path.display());
         }
-        let (s, r, hexes) =
-            marching_cubes_surface(&bvh, a.levels, a.margin, &set, flags).map_err(|e| anyhow::anyhow!("{e}"))?;
+        let (s, r, hexes) = marching_cubes_surface(&bvh, a.levels, a.root.shape()?, a.root.margin, &set, flags)
+            .map_err(|e| anyhow::anyhow!("{e}"))?;
         (s, r, hexes, path)
     };
     pb.finish_and_clear();
@@ -179,6 +180,8 @@ pub fn run(a: Args) -> Result<ExitCode> {
             "input": source.display().to_string(),
             "output": a.output.output.display().to_string(),
             "hexahedra": hexes,
+            "root": if a.field.is_some() { None } else { Some(&a.root.root) },
+            "init": if a.field.is_some() { None } else { Some(a.root.init) },
             "cells_built": r.cells_built,
             "f_patterns": r.f_patterns,
             "flags": if flags == McFlags::Inside { "inside" } else { "corners" },

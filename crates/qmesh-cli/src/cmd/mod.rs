@@ -39,6 +39,40 @@ pub struct InputArgs {
     pub fix_orientation: bool,
 }
 
+/// The level-0 cells of an octree around a surface (`subdivide`, `marching-cubes`).
+#[derive(clap::Args, Debug, Clone)]
+pub struct OctreeRootArgs {
+    /// Level-0 cells: `cube` (one cube around the surface, qmesh's) or `box` (the
+    /// authors' program: the bounding box itself, in `--init` cells along its longest axis).
+    #[arg(long, default_value = "cube", value_parser = ["cube", "box"])]
+    pub root: String,
+    /// With `--root box`: level-0 cells along the longest axis (the authors' `-init`).
+    #[arg(long, default_value_t = 1)]
+    pub init: u32,
+    /// Root cube side beyond the surface's longest extent, as a fraction (0.01 = 1 %).
+    #[arg(long, default_value_t = 0.01)]
+    pub margin: f64,
+}
+
+impl OctreeRootArgs {
+    /// The root shape asked for.
+    ///
+    /// # Errors
+    /// A margin outside [0, 10] or an `--init` outside [1, 1024].
+    pub fn shape(&self) -> Result<qmesh::apps::RootShape> {
+        if !(0.0..=10.0).contains(&self.margin) {
+            anyhow::bail!("--margin {} is outside [0, 10]", self.margin);
+        }
+        if self.init == 0 || self.init > 1024 {
+            anyhow::bail!("--init {} is outside [1, 1024]", self.init);
+        }
+        Ok(match self.root.as_str() {
+            "box" => qmesh::apps::RootShape::BoundingBox { init: self.init },
+            _ => qmesh::apps::RootShape::Cube,
+        })
+    }
+}
+
 /// The output of a command that writes one mesh.
 #[derive(clap::Args, Debug, Clone)]
 pub struct OutputArgs {

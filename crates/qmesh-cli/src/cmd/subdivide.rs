@@ -6,7 +6,7 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 use anyhow::{Result, bail};
-use qmesh::apps::{ConformalPhases, RootShape, SubdivideOptions, subdivide, transitions_on_map};
+use qmesh::apps::{ConformalPhases, SubdivideOptions, subdivide, transitions_on_map};
 use qmesh::build::{ExtractedKinds, extract, non_conformal_faces};
 use qmesh::cmap::{CMap3, Dart};
 use qmesh::geom::TriangleBvh;
@@ -29,16 +29,8 @@ pub struct Args {
     /// Refine plain boxes with hand-written code instead of query-replace.
     #[arg(long)]
     pub direct: bool,
-    /// Level-0 cells: `cube` (one cube around the surface, qmesh's) or `box` (the
-    /// authors' program: the bounding box itself, in `--init` cells along its longest axis).
-    #[arg(long, default_value = "cube", value_parser = ["cube", "box"])]
-    pub root: String,
-    /// With `--root box`: level-0 cells along the longest axis (the authors' `-init`).
-    #[arg(long, default_value_t = 1)]
-    pub init: u32,
-    /// Root cube side beyond the surface's longest extent, as a fraction (0.01 = 1 %).
-    #[arg(long, default_value_t = 0.01)]
-    pub margin: f64,
+    #[command(flatten)]
+    pub root: super::OctreeRootArgs,
     /// Drop the hexahedra outside the surface that it does not touch.
     #[arg(long)]
     pub remove_outside: bool,
@@ -71,9 +63,7 @@ pub fn run(a: Args) -> Result<ExitCode> {
     if a.levels > 12 {
         bail!("--levels {} is too deep (at most 12: 8^12 cells would not fit in memory)", a.levels);
     }
-    if !(0.0..=10.0).contains(&a.margin) {
-        bail!("--margin {} is outside [0, 10]", a.margin);
-    }
+    let root = a.root.shape()?;
     a.output.check_against(&a.surface)?;
     let out_format = resolve_format(&a.output.output, None)?;
     let surface = read_surface(&a.surface, parse_format(&a.format)?)?;
@@ -81,14 +71,10 @@ pub fn run(a: Args) -> Result<ExitCode> {
     if bvh.is_empty() {
         bail!("{}: no polygon to subdivide around", a.surface.display());
     }
-    if a.init == 0 || a.init > 1024 {
-        bail!("--init {} is outside [1, 1024]", a.init);
-    }
-    let root = if a.root == "box" { RootShape::BoundingBox { init: a.init } } else { RootShape::Cube };
     let opts = SubdivideOptions {
         levels: a.levels,
         root,
-        margin: a.margin,
+        margin: a.root.margin,
         direct: a.direct,
         remove_outside: a.remove_outside,
         use_signatures: !a.no_signatures,
@@ -127,8 +113,8 @@ pub fn run(a: Args) -> Result<ExitCode> {
             "balance_splits": r.balance_splits,
             "removed_outside": r.removed_outside,
             "with_hanging_vertices": r.with_hanging_vertices,
-            "root": a.root,
-            "init": a.init,
+            "root": a.root.root,
+            "init": a.root.init,
             "darts": s.map.as_ref().map(|m| m.nb_darts()),
             "valid": validity,
             "seconds": r.seconds,

@@ -296,11 +296,12 @@ fn fan_into(mesh: &IndexedMesh, out: &mut IndexedMesh) {
 pub fn marching_cubes_surface(
     surface: &crate::geom::TriangleBvh,
     levels: u8,
+    root: super::RootShape,
     margin: f64,
     set: &PatternSet,
     flags: McFlags,
 ) -> Result<(IndexedMesh, McReport, usize), String> {
-    let tree = super::subdivide::octree_around(surface, levels, margin);
+    let tree = super::subdivide::octree_around(surface, levels, root, margin);
     let hexes = tree.to_mesh();
     let inside = tree.point_sides(surface);
     let (cells, _) = super::hanging::insert_hanging_vertices(&hexes).map_err(|e| e.to_string())?;

@@ -157,8 +157,8 @@ pub fn subdivide(
 
 /// The octree of [`subdivide`] with `direct` (no map): for pipelines that only need
 /// the cells, such as marching cubes of a surface.
-pub fn octree_around(surface: &TriangleBvh, levels: u8, margin: f64) -> Octree {
-    subdivide_direct(initial_tree(surface, RootShape::Cube, margin), surface, levels, false, &|_| {}).0
+pub fn octree_around(surface: &TriangleBvh, levels: u8, root: RootShape, margin: f64) -> Octree {
+    subdivide_direct(initial_tree(surface, root, margin), surface, levels, false, &|_| {}).0
 }
 
 /// The level-0 leaves of `shape` around `surface`.
