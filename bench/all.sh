@@ -23,6 +23,7 @@ run authors_setup python3 bench/authors_setup.py --runs "$RUNS"
 run authors_transitions python3 bench/authors_setup.py --runs "$RUNS" --transitions
 run authors_marching_cubes python3 bench/authors_setup.py --runs "$RUNS" --marching-cubes
 run subdivision python3 bench/subdivision.py --runs "$RUNS"
+run parallel_ceiling python3 bench/parallel_ceiling.py --runs "$RUNS"
 run recombine python3 bench/recombine.py --runs "$RUNS"
 python3 -m pip install --quiet gmsh
 run recombine_cad python3 bench/recombine_cad.py --runs "$RUNS"
