@@ -9,12 +9,14 @@ use std::time::Instant;
 use numpy::PyReadonlyArray3;
 use pyo3::prelude::*;
 use qmesh::apps::{
-    GeneratedKind, McFlags, RecombineOptions, RootShape, SplitChoice, SubdivideOptions, TetrahedralizeOptions,
-    conformal as conformal_map, generated_pattern_set, marching_cubes_field, mc_pattern_set,
+    ConformalPhases, GeneratedKind, McFlags, RecombineOptions, RootShape, SplitChoice, SubdivideOptions,
+    TetrahedralizeOptions, conformal as conformal_map, generated_pattern_set, marching_cubes_field, mc_pattern_set,
     recombine as recombine_map, recombined_mesh, subdivide as subdivide_surface, tet_to_hex,
-    tetrahedralize as split_hexes, triangulate,
+    tetrahedralize as split_hexes, transitions_on_map, triangulate,
 };
-use qmesh::build::{BuildOptions, IndexedMesh, build_surface_map, build_volume_map, count_cell_kinds, extract};
+use qmesh::build::{
+    BuildOptions, IndexedMesh, build_surface_map, build_volume_map, count_cell_kinds, extract, non_conformal_faces,
+};
 use qmesh::geom::TriangleBvh;
 use qmesh::io::LoadedMap;
 use qmesh::modify::{load_rules, run_rules};
@@ -116,8 +118,12 @@ pub fn marching_cubes(
 /// Octree subdivision (2022 Algorithm 5) of the box around a surface mesh (or the
 /// boundary of a volume mesh), `levels` deep; with `init`, the root cells are the
 /// bounding box cut into `init` cells along its longest axis (the authors' set-up).
+/// With `conformal`, the transitions (2022 Algorithm 7) then run on the same map, with
+/// the `transition_patterns` folders or compiled sets (default: the generated set).
 #[pyfunction]
-#[pyo3(signature = (surface, levels=4, margin=0.01, remove_outside=false, direct=false, init=None))]
+#[pyo3(signature = (surface, levels=4, margin=0.01, remove_outside=false, direct=false, init=None,
+                    conformal=false, transition_patterns=None))]
+#[allow(clippy::too_many_arguments)] // the Python keywords, as `qmesh subdivide`'s options
 pub fn subdivide(
     py: Python<'_>,
     surface: &RawMesh,
@@ -126,12 +132,27 @@ pub fn subdivide(
     remove_outside: bool,
     direct: bool,
     init: Option<u32>,
+    conformal: bool,
+    transition_patterns: Option<Vec<PathBuf>>,
 ) -> PyResult<(RawMesh, String)> {
     let cells = Arc::clone(&surface.mesh);
     let root = match init {
         None => RootShape::Cube,
         Some(0) => return Err(value_error(py, "init must be at least 1".to_string())),
         Some(init) => RootShape::BoundingBox { init },
+    };
+    if direct && conformal {
+        return Err(value_error(py, "conformal needs the map: it cannot go with direct".to_string()));
+    }
+    if transition_patterns.is_some() && !conformal {
+        return Err(value_error(py, "transition_patterns only go with conformal=True".to_string()));
+    }
+    let transitions = match (conformal, transition_patterns) {
+        (false, _) => None,
+        (true, None) => {
+            Some(generated_pattern_set(GeneratedKind::Transitions, FlagRule::Corners).map_err(|e| value_error(py, e))?)
+        }
+        (true, Some(dirs)) => Some(pattern_set(&dirs, "corners").map_err(|e| value_error(py, e))?.0),
     };
     let result = interruptible(py, move || {
         let boundary;
@@ -146,8 +167,23 @@ pub fn subdivide(
         }
         let bvh = TriangleBvh::from_polygons(&s.points, (0..s.nb_polygons()).map(|i| s.polygon(i)));
         let opts = SubdivideOptions { levels, root, margin, direct, remove_outside, use_signatures: true };
-        let sub = subdivide_surface(&bvh, &opts, None, &|_| {}).map_err(|e| e.to_string())?;
-        Ok((sub.mesh, to_json(&sub.report)?))
+        let mut sub = subdivide_surface(&bvh, &opts, None, &|_| {}).map_err(|e| e.to_string())?;
+        match (&transitions, &mut sub.map) {
+            (Some(set), Some(map)) => {
+                let mut phases = ConformalPhases::default();
+                let (replace, kinds) =
+                    transitions_on_map(map, set, true, Some(&sub.volumes), &mut phases).map_err(|e| e.to_string())?;
+                let mut report: serde_json::Value =
+                    serde_json::from_str(&to_json(&sub.report)?).map_err(|e| e.to_string())?;
+                report["transitions"] = json!({
+                    "replace": replace,
+                    "cell_types": kinds,
+                    "non_conformal_faces": non_conformal_faces(map),
+                });
+                Ok((extract(map).0, report.to_string()))
+            }
+            _ => Ok((sub.mesh, to_json(&sub.report)?)),
+        }
     })?;
     let (mesh, report) = result.map_err(|e| value_error(py, format!("{}: {e}", surface.name)))?;
     Ok((RawMesh::new(mesh, "<memory>"), report))

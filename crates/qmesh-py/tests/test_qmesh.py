@@ -139,6 +139,22 @@ def test_subdivide_with_the_authors_root():
         surface.subdivide(levels=1, init=0)
 
 
+def test_subdivide_conformal_gives_the_authors_counts():
+    # cgal_hexa_subdivision -lmax 6 -create-transitions on the bunny, with its 325 + 5
+    # transition patterns: 25,792 hex, 1,498 prisms, 17,002 pyramids, 12,845 tets.
+    surface = qmesh.read(data("surface/bunny.off"))
+    patterns = [data("patterns/cgal/hexa-325-patterns"), data("patterns/cgal/square-5-patterns")]
+    mesh, report = surface.subdivide(levels=6, remove_outside=True, init=1, conformal=True,
+                                     transition_patterns=patterns)
+    t = report["transitions"]
+    kinds = t["cell_types"]
+    assert (kinds["hex"], kinds["prism"], kinds["pyramid"], kinds["tet"]) == (25792, 1498, 17002, 12845)
+    assert t["replace"]["volumes_replaced"] == 2718 and t["non_conformal_faces"] == 0
+    assert sum(len(c) for c in mesh.cells.values()) == 25792 + 1498 + 17002 + 12845
+    with pytest.raises(qmesh.MeshValueError, match="only go with conformal"):
+        surface.subdivide(levels=1, transition_patterns=patterns)
+
+
 def test_modify_runs_a_rule_file(tmp_path):
     boots = ROOT / "examples" / "boots"
     subprocess.run([sys.executable, str(boots / "boots.py"), str(tmp_path)], check=True, capture_output=True)

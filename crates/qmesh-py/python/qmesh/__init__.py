@@ -121,12 +121,17 @@ class Mesh:
 
     # --- applications -------------------------------------------------------------
 
-    def subdivide(self, levels=4, margin=0.01, remove_outside=False, direct=False, init=None):
+    def subdivide(self, levels=4, margin=0.01, remove_outside=False, direct=False, init=None,
+                  conformal=False, transition_patterns=None):
         """The 2:1 octree of hexahedra around this surface, `levels` deep, by
         query-replace (2022 Algorithm 5). The root is one cube around the surface, or
         with `init` the bounding box in `init` cells along its longest axis (the
-        authors' program's set-up). Returns (mesh, report)."""
-        return _pair(_qmesh.subdivide(self._raw, levels, margin, remove_outside, direct, init))
+        authors' program's set-up). With `conformal`, the transitions (2022 Algorithm
+        7) then run on the same map: hexahedra, prisms, pyramids and tetrahedra with no
+        hanging vertex, with the `transition_patterns` folders or compiled sets (default:
+        the generated set). Returns (mesh, report)."""
+        patterns = None if transition_patterns is None else [str(p) for p in transition_patterns]
+        return _pair(_qmesh.subdivide(self._raw, levels, margin, remove_outside, direct, init, conformal, patterns))
 
     def tet2hex(self):
         """Every tetrahedron into four hexahedra (2022 §7.4). Returns (mesh, report)."""
