@@ -103,9 +103,7 @@ def march_row(a, stem, src, level, patterns):
     print(f"| {stem} | {level} | {qo['hexahedra']:,} | {qo['faces_replaced']:,} | {qo['volumes_replaced']:,} "
           f"| {qo['polygons']:,} | {po['fqr']:,} | {po['vqr']:,} | {po['faces']:,} "
           f"| {qo['seconds']:.3f} | {po['step']:.3f} | {po['step'] / qo['seconds']:.1f} "
-          f"| {q['seconds']:.2f} | {p['seconds']:.2f} | {p['seconds'] / q['seconds']:.1f} "
-          f"| {q['peak_rss_bytes'] / 1e6:.0f} | {p['peak_rss_bytes'] / 1e6:.0f} "
-          f"| {p['peak_rss_bytes'] / q['peak_rss_bytes']:.1f} |", flush=True)
+          f"{wall_and_memory(q, p)}", flush=True)
 
 
 def transitions_row(a, stem, off, level, patterns, transitions, compiled):
@@ -132,9 +130,15 @@ def transitions_row(a, stem, off, level, patterns, transitions, compiled):
           f"| {q_step:.3f} | {p_step:.3f} | {p_step / q_step:.1f} "
           f"| {q_step - q_load:.3f} | {p_step - p_load:.3f} | {(p_step - p_load) / (q_step - q_load):.1f} "
           f"| {c_step:.3f} | {p_step / c_step:.1f} "
-          f"| {q['seconds']:.2f} | {p['seconds']:.2f} | {p['seconds'] / q['seconds']:.1f} "
-          f"| {q['peak_rss_bytes'] / 1e6:.0f} | {p['peak_rss_bytes'] / 1e6:.0f} "
-          f"| {p['peak_rss_bytes'] / q['peak_rss_bytes']:.1f} |", flush=True)
+          f"{wall_and_memory(q, p)}", flush=True)
+
+
+def wall_and_memory(q, p):
+    """The table's last columns: both processes' wall time and peak memory, and the
+    ratios peer / qmesh."""
+    return (f"| {q['seconds']:.2f} | {p['seconds']:.2f} | {p['seconds'] / q['seconds']:.1f} "
+            f"| {q['peak_rss_bytes'] / 1e6:.0f} | {p['peak_rss_bytes'] / 1e6:.0f} "
+            f"| {p['peak_rss_bytes'] / q['peak_rss_bytes']:.1f} |")
 
 
 def median(measured, figure):
@@ -213,9 +217,7 @@ def main():
                   f"| {qo['faces_replaced']:,} | {qo['volumes_replaced']:,} "
                   f"| {po['volumes']:,} | {po['generic']:,} | {po['fqr']:,} | {po['vqr']:,} "
                   f"| {qo['seconds']:.3f} | {po['step']:.3f} | {po['step'] / qo['seconds']:.1f} "
-                  f"| {q['seconds']:.2f} | {p['seconds']:.2f} | {p['seconds'] / q['seconds']:.1f} "
-                  f"| {q['peak_rss_bytes'] / 1e6:.0f} | {p['peak_rss_bytes'] / 1e6:.0f} "
-                  f"| {p['peak_rss_bytes'] / q['peak_rss_bytes']:.1f} |", flush=True)
+                  f"{wall_and_memory(q, p)}", flush=True)
 
 
 main()
