@@ -147,9 +147,16 @@ pub struct MatchReport {
 /// copy of the query passes a limit of 0.
 const RESIDUAL_ROUNDING: f64 = 1e-12;
 
-/// Start darts per parallel task: large enough to amortise scheduling, small enough
-/// to balance two to dozens of threads.
+/// Start darts per parallel task at most: large enough to amortise scheduling, small
+/// enough to balance two to dozens of threads.
 const CHUNK: usize = 4096;
+
+/// Start darts per parallel task on a map of `n` dart slots: [`CHUNK`], or less on small
+/// maps so that every thread gets some (a start dart can cost a microsecond: a map of
+/// a few thousand darts is milliseconds of work).
+fn chunk_for(n: usize) -> usize {
+    n.div_ceil(4 * rayon::current_num_threads()).clamp(64, CHUNK)
+}
 
 /// Matches every query of `set` from every live dart of `map`.
 ///
@@ -170,13 +177,14 @@ pub fn find_matches(map: &CMap3, set: &QuerySet, opts: &MatchOptions<'_>) -> Mat
     // Fold then reduce (in start-dart order): one growing list per task instead of
     // one per chunk, so the lists merge in place (large ones are remapped, not
     // copied) and the peak memory stays near the matches' own size.
-    let found = (0..n.div_ceil(CHUNK))
+    let chunk = chunk_for(n);
+    let found = (0..n.div_ceil(chunk))
         .into_par_iter()
         .fold(
             || (set.annotator(), Found::new(set.queries.len())),
             |(mut annot, mut found), c| {
                 let before = annot.steps;
-                for s in (c * CHUNK).max(1)..((c + 1) * CHUNK).min(n) {
+                for s in (c * chunk).max(1)..((c + 1) * chunk).min(n) {
                     let Some(start) = Dart::from_raw(s as u32).filter(|&d| map.is_live(d)) else { continue };
                     matches_at(map, set, opts, &mut annot, start, &mut found);
                 }
