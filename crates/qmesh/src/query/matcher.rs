@@ -278,3 +278,21 @@ pub(crate) fn matches_at(
         }
     });
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A small map is shared among the threads (hexbeam's 2,880 darts were one task of
+    /// 4,096 on one thread); a large one keeps tasks of [`CHUNK`].
+    #[test]
+    fn small_maps_give_every_thread_tasks() {
+        let two = rayon::ThreadPoolBuilder::new().num_threads(2).build().unwrap();
+        two.install(|| {
+            assert_eq!(chunk_for(2_881), 361);
+            assert!(2_881usize.div_ceil(chunk_for(2_881)) >= 2 * 2);
+            assert_eq!(chunk_for(10), 64);
+            assert_eq!(chunk_for(5_000_000), CHUNK);
+        });
+    }
+}
