@@ -187,19 +187,24 @@ fn rule_of(splits: &HexSplits, o: usize) -> Result<HexRule, HexRuleError> {
         .map_err(|source| HexRuleError::Query { class: err_class, source })?;
         let corners = query.corners.expect("given");
         let (map, labelling) = (&query.map, &query.labelling);
-        let free: Vec<Dart> = labelling.darts.iter().copied().filter(|&d| map.is_free(d, 3)).collect();
-        let diagonals = HEX_FACES.map(|q| {
-            let on = |d: Dart, a: u8, b: u8| {
-                let (u, v) = (map.vertex_of(d), map.vertex_of(map.next(d)));
-                (u, v) == (a.into(), b.into()) || (u, v) == (b.into(), a.into())
-            };
-            let pick = |a: u8, b: u8| -> Vec<u32> {
-                free.iter().filter(|&&d| on(d, a, b)).map(|&d| labelling.of(d)).collect()
-            };
-            let (a, b) = (pick(q[0], q[2]), pick(q[1], q[3]));
-            let found = if a.len() == 2 { a } else { b };
-            [found[0], found[1]]
-        });
+        // Per pair of nodes, the face of [`HEX_FACES`] it is a diagonal of; each boundary
+        // dart along one goes to its face, in label order (one pass over the free darts).
+        let mut face_of = [[u8::MAX; 8]; 8];
+        for (f, q) in HEX_FACES.iter().enumerate() {
+            for (a, b) in [(q[0], q[2]), (q[1], q[3])] {
+                (face_of[a as usize][b as usize], face_of[b as usize][a as usize]) = (f as u8, f as u8);
+            }
+        }
+        let mut diagonals = [[0u32; 2]; 6];
+        let mut found = [0usize; 6];
+        for &d in labelling.darts.iter().filter(|&&d| map.is_free(d, 3)) {
+            let f = face_of[map.vertex_of(d) as usize][map.vertex_of(map.next(d)) as usize];
+            if let Some(slot) = diagonals.get_mut(f as usize) {
+                slot[found[f as usize]] = labelling.of(d);
+                found[f as usize] += 1;
+            }
+        }
+        debug_assert_eq!(found, [2; 6], "each face of a subdivision has one diagonal, two boundary darts along it");
         let on_diagonal = |l: u32| diagonals.iter().flatten().any(|&x| x == l);
         let keep = query.word.free_labels().map(|k| k as u32).find(|&k| !on_diagonal(k)).expect("hexahedron edges");
         Ok(HexRule { query, target: HexTarget { oriented: o, corners, diagonals, keep } })
