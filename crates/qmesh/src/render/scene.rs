@@ -276,13 +276,13 @@ pub fn render_titled(mesh: &IndexedMesh, opts: &RenderOptions, title: Option<&st
             (x0, x1, y0, y1) = (x0.min(x), x1.max(x), y0.min(y), y1.max(y));
         }
     }
-    let (aw, ah) = (w as f64, (h - top.min(h)) as f64);
-    let scale = 0.92 * (aw / (x1 - x0).max(1e-12)).min(ah / (y1 - y0).max(1e-12));
+    let frame = Frame { width: w as f64, height: (h - top.min(h)) as f64, legend: legend_size(&legend) };
+    let fit = frame.fit(x1 - x0, y1 - y0);
     let (mx, my) = (0.5 * (x0 + x1), 0.5 * (y0 + y1));
     let project = |p: [f64; 3]| {
         let d = sub(p, c);
         let (x, y) = (dot(d, right) - mx, dot(d, up) - my);
-        [aw / 2.0 + scale * x, top as f64 + ah / 2.0 - scale * y, dot(d, fwd)]
+        [fit.centre[0] + fit.scale * x, top as f64 + fit.centre[1] - fit.scale * y, dot(d, fwd)]
     };
     let bias = 1e-3 * radius;
     for i in (0..count).filter(|&i| kept[i]) {
@@ -336,16 +336,98 @@ fn draw_title(canvas: &mut Canvas, title: Option<&str>) {
     let Some(title) = title else { return };
     let w = canvas.width;
     canvas.rect(0, 0, w, TITLE_BAND - 4, [255, 255, 255]);
-    draw_text(canvas, 12, 6, title, 2, [20, 20, 20]);
+    // Half size when the title would run off the picture at full size.
+    let scale = if 12 + text_width(title, 2) <= w { 2 } else { 1 };
+    draw_text(canvas, 12, 6 + 4 * (2 - scale), title, scale, [20, 20, 20]);
+}
+
+/// Text scale, row height and left edge of the legend's entries, and its margin.
+const LEGEND_SCALE: usize = 2;
+const LEGEND_ROW: usize = 22;
+const LEGEND_TEXT_X: usize = 34;
+const LEGEND_MARGIN: usize = 12;
+
+/// Width and height of the legend's box in the top left corner (0 × 0 without one).
+fn legend_size(legend: &[(Rgb, String)]) -> (f64, f64) {
+    let widest = legend.iter().map(|(_, t)| text_width(t, LEGEND_SCALE)).max();
+    widest.map_or((0.0, 0.0), |t| {
+        ((LEGEND_TEXT_X + t + LEGEND_MARGIN) as f64, (LEGEND_MARGIN + legend.len() * LEGEND_ROW) as f64)
+    })
+}
+
+/// The drawing area below the title, with the legend's box in its top left corner.
+struct Frame {
+    width: f64,
+    height: f64,
+    legend: (f64, f64),
+}
+
+/// Where the mesh goes: pixels per unit and the screen point of its extent's centre.
+#[derive(Debug, PartialEq)]
+struct Fit {
+    scale: f64,
+    centre: [f64; 2],
+}
+
+impl Frame {
+    /// The largest fit of an extent `dx` × `dy` (to 92 % of the space) that keeps clear
+    /// of the legend: the whole frame when that misses the legend's box, else beside
+    /// it or below it, whichever draws the mesh larger.
+    fn fit(&self, dx: f64, dy: f64) -> Fit {
+        let in_box = |x: f64, y: f64, w: f64, h: f64| {
+            let scale = 0.92 * (w / dx.max(1e-12)).min(h / dy.max(1e-12));
+            Fit { scale, centre: [x + w / 2.0, y + h / 2.0] }
+        };
+        let (lw, lh) = self.legend;
+        let whole = in_box(0.0, 0.0, self.width, self.height);
+        let (left, top) = (whole.centre[0] - whole.scale * dx / 2.0, whole.centre[1] - whole.scale * dy / 2.0);
+        if lw == 0.0 || left >= lw || top >= lh {
+            return whole;
+        }
+        let beside = in_box(lw, 0.0, (self.width - lw).max(1.0), self.height);
+        let below = in_box(0.0, lh, self.width, (self.height - lh).max(1.0));
+        if beside.scale >= below.scale { beside } else { below }
+    }
 }
 
 fn draw_legend(canvas: &mut Canvas, legend: &[(Rgb, String)], top: usize) {
-    let scale = 2;
+    let scale = LEGEND_SCALE;
     for (k, (colour, text)) in legend.iter().enumerate() {
-        let y = top + 12 + k * 22;
-        canvas.rect(12, y, 16, 16, [40, 40, 40]);
-        canvas.rect(14, y + 2, 12, 12, *colour);
-        canvas.rect(34, y, text_width(text, scale), 16, [255, 255, 255]);
-        draw_text(canvas, 36, y + 1, text, scale, [20, 20, 20]);
+        let y = top + LEGEND_MARGIN + k * LEGEND_ROW;
+        canvas.rect(LEGEND_MARGIN, y, 16, 16, [40, 40, 40]);
+        canvas.rect(LEGEND_MARGIN + 2, y + 2, 12, 12, *colour);
+        canvas.rect(LEGEND_TEXT_X, y, text_width(text, scale), 16, [255, 255, 255]);
+        draw_text(canvas, LEGEND_TEXT_X + 2, y + 1, text, scale, [20, 20, 20]);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The mesh's box on screen for an extent `dx` × `dy`: (left, top, right, bottom).
+    fn screen_box(fit: &Fit, dx: f64, dy: f64) -> [f64; 4] {
+        let (hw, hh) = (fit.scale * dx / 2.0, fit.scale * dy / 2.0);
+        [fit.centre[0] - hw, fit.centre[1] - hh, fit.centre[0] + hw, fit.centre[1] + hh]
+    }
+
+    #[test]
+    fn the_mesh_keeps_clear_of_the_legend() {
+        let frame = |legend| Frame { width: 800.0, height: 600.0, legend };
+        // Without a legend: 92 % of the frame, centred.
+        assert_eq!(frame((0.0, 0.0)).fit(4.0, 3.0), Fit { scale: 0.92 * 200.0, centre: [400.0, 300.0] });
+        // A wide mesh would run under a legend 290 × 122 in the corner: it goes below
+        // (a tall one beside), never into the legend's box, as large as it can.
+        for (dx, dy) in [(4.0, 2.0), (1.0, 3.0), (4.0, 3.0)] {
+            let fit = frame((290.0, 122.0)).fit(dx, dy);
+            let [l, t, r, b] = screen_box(&fit, dx, dy);
+            assert!(l >= 290.0 || t >= 122.0, "{dx} × {dy}: {:?} overlaps the legend", [l, t, r, b]);
+            assert!(l >= 0.0 && t >= 0.0 && r <= 800.0 && b <= 600.0, "{dx} × {dy} leaves the frame");
+            let plain = |width, height| Frame { width, height, legend: (0.0, 0.0) }.fit(dx, dy).scale;
+            assert_eq!(fit.scale, plain(800.0 - 290.0, 600.0).max(plain(800.0, 600.0 - 122.0)), "{dx} × {dy}");
+        }
+        // A mesh that misses the legend anyway keeps the whole frame.
+        let narrow = frame((100.0, 50.0)).fit(1.0, 1.0);
+        assert_eq!(narrow, frame((0.0, 0.0)).fit(1.0, 1.0));
     }
 }
