@@ -283,7 +283,7 @@ mod tests {
         let found = find_matches(&direct, &QuerySet::new(vec![q.clone()]), &MatchOptions::default());
         assert_eq!(found.per_query[0], 1);
         let start = found.matches[0].start;
-        assert_eq!(direct.vertex_of(start), built.vertex_of(q.labelling.darts[0]));
+        assert_eq!(direct.vertex_of(start), built.vertex_of(q.labelling().darts[0]));
         let mut w = crate::cmap::OrbitWalker::new();
         for d in direct.cells(crate::cmap::Orbit::Volume) {
             assert!(crate::geom::signed_volume_of_map_volume(&direct, d, &mut w) > 0.0);

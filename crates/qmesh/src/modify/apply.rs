@@ -30,7 +30,7 @@ pub fn builtin_apply(name: &str) -> Option<Arc<ApplyFn>> {
 /// # Errors
 /// [`MapError::Refused`] when a face cannot be removed in any order.
 pub fn merge_volumes(map: &mut CMap3, query: &Query, matched: &[Dart]) -> Result<usize, MapError> {
-    let inner: Vec<Dart> = face_representatives(query, |d| !query.map.is_free(d, 3))
+    let inner: Vec<Dart> = face_representatives(query, |d| !query.map().is_free(d, 3))
         .into_iter()
         .map(|k| matched[k as usize - 1])
         .collect();
@@ -67,8 +67,8 @@ pub fn merge_volumes(map: &mut CMap3, query: &Query, matched: &[Dart]) -> Result
 /// [`MapError::Refused`] when the query has no top face, or its faces cannot be
 /// merged.
 pub fn flatten_top(map: &mut CMap3, query: &Query, matched: &[Dart]) -> Result<(), MapError> {
-    let q = &query.map;
-    let label = |d: Dart| query.labelling.label[d.idx()];
+    let q = query.map();
+    let label = |d: Dart| query.labelling().label[d.idx()];
     let image = |d: Dart| matched[label(d) as usize - 1];
     // A positively oriented volume of the map runs its faces clockwise seen from
     // outside (Newell's normal points in).
@@ -117,11 +117,11 @@ fn points_up(map: &CMap3, d: Dart, outward: f64) -> bool {
 /// The smallest label of each face of the query (one side of it) whose darts satisfy
 /// `keep`, each face once: a 3-sewn face is named by its side with the smaller label.
 fn face_representatives(query: &Query, keep: impl Fn(Dart) -> bool) -> Vec<u32> {
-    let q = &query.map;
-    let label = |d: Dart| query.labelling.label[d.idx()];
+    let q = query.map();
+    let label = |d: Dart| query.labelling().label[d.idx()];
     let mut seen = vec![false; q.dart_capacity()];
     let mut out = Vec::new();
-    for &d in &query.labelling.darts {
+    for &d in &query.labelling().darts {
         if seen[d.idx()] || !keep(d) {
             continue;
         }

@@ -30,7 +30,7 @@ pub fn embed(small: &Query, big: &CMap3) -> Option<Vec<Dart>> {
             continue;
         }
         let m = a.matched();
-        let r = residual(&small.map, big, small.labelling.darts.iter().copied().zip(m.iter().copied()));
+        let r = residual(small.map(), big, small.labelling().darts.iter().copied().zip(m.iter().copied()));
         if best.as_ref().is_none_or(|b| r < b.0) {
             best = Some((r, m));
         }

@@ -189,7 +189,7 @@ fn extend_plan(q: &mut Query, t: &CMap3) -> Result<Plan, ModifyError> {
     }
     // The match darts that new volumes are glued to must be on the input's boundary.
     let attached: rustc_hash::FxHashSet<u32> = attached.into_iter().collect();
-    let dart_labels = q.labelling.clone();
+    let dart_labels = q.labelling().clone();
     let word = q.word.clone();
     q.set_conditions(|d| {
         let k = dart_labels.of(d);
@@ -200,10 +200,10 @@ fn extend_plan(q: &mut Query, t: &CMap3) -> Result<Plan, ModifyError> {
 
 fn delete_plan(q: &Query, t: &CMap3) -> Result<Plan, ModifyError> {
     let tq = Query::new("target", t.clone(), |_| Condition::Any).map_err(ModifyError::Target)?;
-    let e = embed(&tq, &q.map).ok_or(ModifyError::NotSubmap { op: Operation::Delete })?;
+    let e = embed(&tq, q.map()).ok_or(ModifyError::NotSubmap { op: Operation::Delete })?;
     let kept: rustc_hash::FxHashSet<Dart> = e.into_iter().collect();
     let deleted: Vec<u32> =
-        q.labelling.darts.iter().filter(|d| !kept.contains(d)).map(|&d| q.labelling.of(d)).collect();
+        q.labelling().darts.iter().filter(|d| !kept.contains(d)).map(|&d| q.labelling().of(d)).collect();
     if deleted.is_empty() {
         return Err(ModifyError::Nothing { op: Operation::Delete });
     }
@@ -211,17 +211,18 @@ fn delete_plan(q: &Query, t: &CMap3) -> Result<Plan, ModifyError> {
 }
 
 fn replace_plan(q: &Query, t: &CMap3) -> Result<Plan, ModifyError> {
-    let pairs = boundary_correspondence(&q.map, t).ok_or(ModifyError::Boundaries)?;
-    let label_of_t: FxHashMap<Dart, u32> = pairs.iter().map(|&(qd, td)| (td, q.labelling.of(qd))).collect();
+    let pairs = boundary_correspondence(q.map(), t).ok_or(ModifyError::Boundaries)?;
+    let label_of_t: FxHashMap<Dart, u32> = pairs.iter().map(|&(qd, td)| (td, q.labelling().of(qd))).collect();
     let deleted: Vec<u32> =
-        q.labelling.darts.iter().filter(|&&d| !q.map.is_free(d, 3)).map(|&d| q.labelling.of(d)).collect();
+        q.labelling().darts.iter().filter(|&&d| !q.map().is_free(d, 3)).map(|&d| q.labelling().of(d)).collect();
     let new: Vec<Dart> = t.darts().filter(|&d| !t.is_free(d, 3)).collect();
     let index: FxHashMap<Dart, u32> = new.iter().enumerate().map(|(i, &d)| (d, i as u32)).collect();
     let link_to = |n: Dart| match index.get(&n) {
         Some(&j) => Link::New(j),
         None => Link::Matched(label_of_t[&n]),
     };
-    let preserved: FxHashMap<u32, u32> = pairs.iter().map(|&(qd, td)| (t.vertex_of(td), q.labelling.of(qd))).collect();
+    let preserved: FxHashMap<u32, u32> =
+        pairs.iter().map(|&(qd, td)| (t.vertex_of(td), q.labelling().of(qd))).collect();
     let cage: Vec<Dart> = pairs.iter().map(|p| p.1).collect();
     let vertices = Vertices::new(t, preserved, &cage)?;
     let mut new_darts = Vec::with_capacity(new.len());
@@ -231,7 +232,7 @@ fn replace_plan(q: &Query, t: &CMap3) -> Result<Plan, ModifyError> {
     }
     let relink = pairs
         .iter()
-        .map(|&(qd, td)| (q.labelling.of(qd), 2, link_to(t.beta(td, 2).expect("targets are 2-sewn"))))
+        .map(|&(qd, td)| (q.labelling().of(qd), 2, link_to(t.beta(td, 2).expect("targets are 2-sewn"))))
         .collect();
     Ok(Plan { op: Operation::Replace, deleted, new_darts, relink, created: vertices.weights })
 }

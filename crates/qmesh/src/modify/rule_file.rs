@@ -162,7 +162,7 @@ pub fn parse_rules(path: &Path, text: &str) -> Result<Vec<Rule>, RuleError> {
         let name = r.name.clone().unwrap_or_else(|| stem(&qpath));
         let mut query = Query::new(&name, qmap, |_| default)
             .map_err(|e| value(&r.query, "query", &format!("{}: {e}", qpath.display())))?;
-        let map = query.map.clone();
+        let map = query.map().clone();
         query.set_conditions(|d| labels.of(&map, d).and_then(|l| by_label.get(&l).copied()).unwrap_or(default));
         query.orient_by_geometry = match r.orientation.as_ref().map(|o| o.get_ref().as_str()) {
             None | Some("start") => false,

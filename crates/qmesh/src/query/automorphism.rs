@@ -93,6 +93,22 @@ impl Automorphisms {
         Self::from_candidates(map, labelling, word, candidates)
     }
 
+    #[cfg(test)]
+    /// Each automorphism other than the identity: the image of every label (label k
+    /// goes to `image[k - 1]`), whether it keeps the boundary conditions, and whether
+    /// it moves the hexahedral corners as a cube symmetry (see
+    /// [`restrict_to_corner_symmetries`](Self::restrict_to_corner_symmetries)).
+    pub(crate) fn images(&self) -> impl Iterator<Item = (&[u32], bool, bool)> {
+        self.others.iter().map(|p| (p.image.as_slice(), p.keeps_conditions, p.cube))
+    }
+
+    /// The automorphisms that [`images`](Self::images) listed: for queries stored compiled.
+    pub(crate) fn from_images(images: impl IntoIterator<Item = (Vec<u32>, bool, bool)>) -> Automorphisms {
+        let others =
+            images.into_iter().map(|(image, keeps_conditions, cube)| Permutation { image, keeps_conditions, cube });
+        Automorphisms { others: others.collect() }
+    }
+
     /// The image of label 1 under each automorphism other than the identity.
     pub(crate) fn start_labels(&self) -> Vec<u32> {
         self.others.iter().map(|p| p.image[0]).collect()

@@ -140,7 +140,7 @@ mod tests {
         let cube = build_volume_map(&crate::generate::hex_grid(1, 1, 1), &BuildOptions::default()).unwrap().0;
         let any = Query::new("any", cube, |_| Condition::Any).unwrap();
         let mut late = any.clone();
-        let last = late.labelling.darts[23];
+        let last = late.labelling().darts[23];
         late.set_conditions(|d| if d == last { Condition::Boundary } else { Condition::Any });
         let queries: Vec<Query> = (0..140).map(|i| if i < 70 { any.clone() } else { late.clone() }).collect();
         let tree = PrefixTree::new(queries.iter().map(|q| &q.word));

@@ -5,7 +5,7 @@ use super::automorphism::Automorphisms;
 use super::error::QueryError;
 use super::fit::AffineFit;
 use super::word::{Condition, Labelling, QueryWord};
-use crate::cmap::{CMap3, Dart, Orbit, OrbitWalker};
+use crate::cmap::{CMap3, Dart};
 use crate::geom::{cross, dot, hex_scaled_jacobian, sub};
 use std::sync::OnceLock;
 
@@ -14,8 +14,8 @@ use std::sync::OnceLock;
 #[derive(Clone, Debug)]
 pub struct Query {
     pub name: String,
-    pub map: CMap3,
-    pub labelling: Labelling,
+    /// The query map and its labelling, built now or on first use.
+    source: Source,
     pub word: QueryWord,
     pub automorphisms: Automorphisms,
     /// Faces of each volume as cycles of labels (volume metric), computed on first use.
@@ -33,6 +33,30 @@ pub struct Query {
     pub max_residual: Option<f64>,
     /// The affine-fit data, computed on first use (most rule books never need it).
     fit: OnceLock<Option<AffineFit>>,
+}
+
+/// Rebuilds a stored query's map: the map and the start dart of its labelling, from a
+/// key the query keeps (a class index for the recombination rules).
+pub(crate) type RebuildMap = fn(u32) -> (CMap3, Dart);
+
+/// Where a query's map comes from: given, or rebuilt on first use by `rebuild(key)`
+/// (the map and its start dart) for queries stored compiled, whose matching needs only
+/// their word (rule books of hundreds of queries, most of which no match uses).
+#[derive(Clone, Debug)]
+struct Source {
+    built: OnceLock<(CMap3, Labelling)>,
+    rebuild: Option<(RebuildMap, u32)>,
+}
+
+impl Source {
+    fn get(&self) -> &(CMap3, Labelling) {
+        self.built.get_or_init(|| {
+            let (build, key) = self.rebuild.expect("a query has its map or a way to rebuild it");
+            let (map, start) = build(key);
+            let labelling = Labelling::new(&map, start).expect("stored queries rebuild as they were compiled");
+            (map, labelling)
+        })
+    }
 }
 
 impl Query {
@@ -63,6 +87,7 @@ impl Query {
         Self::compile(name, map, start, condition, None::<fn(&CMap3, &Labelling) -> [u32; 8]>, None)
     }
 
+    #[cfg(test)]
     /// As [`from_start`](Self::from_start) without checking the map's validity, for the
     /// maps qmesh builds itself (rule books of hundreds of queries, whose validity their
     /// tests assert), with the hexahedral corners given by `corners(map, labelling)`
@@ -105,10 +130,34 @@ impl Query {
             }
             None => hex_corners(&map, &labelling),
         };
-        Ok(Query {
-            name: name.to_string(),
-            map,
-            labelling,
+        let source = Source { built: OnceLock::from((map, labelling)), rebuild: None };
+        Ok(Self::assemble(name.to_string(), source, word, automorphisms, corners))
+    }
+
+    /// A query stored compiled: its word, automorphisms and hexahedral corners as
+    /// computed before, its map rebuilt by `rebuild(key)` (the map and the start dart
+    /// of the labelling) only when something needs it (a modify plan, a volume metric).
+    /// The caller guarantees that the rebuilt map's word is `word` (rule books test it).
+    pub(crate) fn stored(
+        name: String,
+        word: QueryWord,
+        automorphisms: Automorphisms,
+        corners: Option<[u32; 8]>,
+        rebuild: (RebuildMap, u32),
+    ) -> Query {
+        Self::assemble(name, Source { built: OnceLock::new(), rebuild: Some(rebuild) }, word, automorphisms, corners)
+    }
+
+    fn assemble(
+        name: String,
+        source: Source,
+        word: QueryWord,
+        automorphisms: Automorphisms,
+        corners: Option<[u32; 8]>,
+    ) -> Query {
+        Query {
+            name,
+            source,
             word,
             automorphisms,
             volumes: OnceLock::new(),
@@ -117,24 +166,36 @@ impl Query {
             orient_by_geometry: false,
             max_residual: None,
             fit: OnceLock::new(),
-        })
+        }
+    }
+
+    /// The query map (rebuilt on first use for stored queries).
+    pub fn map(&self) -> &CMap3 {
+        &self.source.get().0
+    }
+
+    /// The labelling of the query map from which [`word`](Self::word) was read.
+    pub fn labelling(&self) -> &Labelling {
+        &self.source.get().1
     }
 
     /// Replaces the word's conditions (the labelling is kept) and recomputes the
     /// automorphisms.
     pub fn set_conditions(&mut self, mut condition: impl FnMut(Dart) -> Condition) {
         let free: Vec<usize> = self.word.free_labels().collect();
+        let (map, labelling) = self.source.get();
         for k in free {
-            self.word.set_condition(k, condition(self.labelling.darts[k - 1]));
+            self.word.set_condition(k, condition(labelling.darts[k - 1]));
         }
-        self.automorphisms = Automorphisms::of(&self.map, &self.labelling, &self.word);
+        self.automorphisms = Automorphisms::of(map, labelling, &self.word);
     }
 
     /// Sets the hexahedral corners (labels at the VTK nodes) that the hex-quality
     /// metric and the corner guards read; automorphisms that do not move them as a cube
     /// symmetry then give matches of their own (they read another hexahedron).
     pub fn set_corners(&mut self, corners: [u32; 8]) {
-        self.automorphisms.restrict_to_corner_symmetries(&self.map, &self.labelling, &corners);
+        let (map, labelling) = self.source.get();
+        self.automorphisms.restrict_to_corner_symmetries(map, labelling, &corners);
         self.corners = Some(corners);
     }
 
@@ -146,23 +207,18 @@ impl Query {
 
     /// The affine-fit data of the query's vertices, None when they do not span 3D.
     pub(crate) fn fit(&self) -> Option<&AffineFit> {
-        self.fit.get_or_init(|| vertex_fit(&self.map, &self.labelling)).as_ref()
+        self.fit.get_or_init(|| vertex_fit(self.map(), self.labelling())).as_ref()
     }
 
     /// Faces of each volume as cycles of labels.
     fn volumes(&self) -> &[Vec<Vec<u32>>] {
-        self.volumes.get_or_init(|| volume_faces(&self.map, &self.labelling))
+        self.volumes.get_or_init(|| volume_faces(self.map(), self.labelling()))
     }
 
-    /// The smallest label of each volume: a match's input volumes are those of the
-    /// darts annotated with these.
+    /// The smallest label of each volume, ascending (read from the word): a match's
+    /// input volumes are those of the darts annotated with these.
     pub(crate) fn volume_labels(&self) -> &[u32] {
-        self.volume_labels.get_or_init(|| {
-            self.volumes()
-                .iter()
-                .map(|faces| faces.iter().flatten().copied().min().expect("volumes have darts"))
-                .collect()
-        })
+        self.volume_labels.get_or_init(|| self.word.volume_firsts())
     }
 
     /// Number of darts.
@@ -172,28 +228,28 @@ impl Query {
 
     /// Number of volumes.
     pub fn nb_volumes(&self) -> usize {
-        self.volumes().len()
+        self.volume_labels().len()
     }
 
     /// The most faces a walk from the start dart's volume crosses to reach any other
     /// volume of the query: every volume of a match lies within this many faces of
     /// the volume of its start dart.
     pub fn reach(&self) -> usize {
-        let mut walker = OrbitWalker::new();
-        let mut volume = vec![usize::MAX; self.map.dart_capacity()];
-        let firsts: Vec<Dart> = self.map.cells(Orbit::Volume).collect();
-        for (v, &d) in firsts.iter().enumerate() {
-            walker.collect(&self.map, d, Orbit::Volume).iter().for_each(|x| volume[x.idx()] = v);
+        let (volume, count) = self.word.volumes_of_labels();
+        let mut neighbours = vec![Vec::new(); count];
+        for k in 1..=self.nb_darts() {
+            let other = self.word.symbol(k, 3);
+            if other < super::word::FIRST_CONDITION {
+                neighbours[volume[k] as usize].push(volume[other as usize]);
+            }
         }
-        let mut dist = vec![usize::MAX; firsts.len()];
-        let mut queue = std::collections::VecDeque::from([volume[self.labelling.darts[0].idx()]]);
-        dist[queue[0]] = 0;
+        let mut dist = vec![usize::MAX; count];
+        let mut queue = std::collections::VecDeque::from([volume[1]]);
+        dist[volume[1] as usize] = 0;
         while let Some(v) = queue.pop_front() {
-            for &d in walker.collect(&self.map, firsts[v], Orbit::Volume) {
-                if let Some(w) = self.map.beta(d, 3).map(|o| volume[o.idx()])
-                    && dist[w] == usize::MAX
-                {
-                    dist[w] = dist[v] + 1;
+            for &w in &neighbours[v as usize] {
+                if dist[w as usize] == usize::MAX {
+                    dist[w as usize] = dist[v as usize] + 1;
                     queue.push_back(w);
                 }
             }

@@ -178,7 +178,9 @@ impl QueryWord {
         QueryWord::from_symbols(symbols)
     }
 
-    fn from_symbols(symbols: Vec<u32>) -> QueryWord {
+    /// The word of these symbols (labels, and condition codes on free β3), as
+    /// [`symbols`](Self::symbols) gives them back: for words stored compiled.
+    pub(crate) fn from_symbols(symbols: Vec<u32>) -> QueryWord {
         let mut seen = 1; // label 1 is the start dart
         let ops = symbols
             .iter()
@@ -221,6 +223,45 @@ impl QueryWord {
     /// The condition of the dart labelled k, when it is 3-free in the query.
     pub fn condition(&self, k: usize) -> Option<Condition> {
         Condition::of_code(self.symbol(k, 3))
+    }
+
+    /// The volume of each label (`volumes[k]` for label k; index 0 unused), volumes
+    /// numbered in the order of their smallest label: labels joined by β1 or β2 are in
+    /// one volume (a query is closed under both). Also returns the number of volumes.
+    pub(crate) fn volumes_of_labels(&self) -> (Vec<u32>, usize) {
+        let n = self.nb_darts();
+        let mut volume = vec![u32::MAX; n + 1];
+        let (mut count, mut stack) = (0, Vec::new());
+        for k in 1..=n {
+            if volume[k] != u32::MAX {
+                continue;
+            }
+            volume[k] = count;
+            stack.push(k);
+            while let Some(x) = stack.pop() {
+                for i in 1..=2 {
+                    let y = self.symbol(x, i) as usize;
+                    if volume[y] == u32::MAX {
+                        volume[y] = count;
+                        stack.push(y);
+                    }
+                }
+            }
+            count += 1;
+        }
+        (volume, count as usize)
+    }
+
+    /// The smallest label of each volume of the query, ascending.
+    pub(crate) fn volume_firsts(&self) -> Vec<u32> {
+        let (volume, count) = self.volumes_of_labels();
+        let mut firsts = Vec::with_capacity(count);
+        for (k, &v) in volume.iter().enumerate().skip(1) {
+            if v as usize == firsts.len() {
+                firsts.push(k as u32);
+            }
+        }
+        firsts
     }
 
     /// Labels of the 3-free darts.

@@ -248,7 +248,7 @@ fn block_of_eight_in_a_grid_and_its_corner_variant() {
     assert_eq!(r.with_automorphisms[0], 5 * 4 * 3 * 24);
     // ε on the three sides through the corner at the origin: only the grid's 8 corners.
     let mut q = query(block, Condition::Any);
-    let map = q.map.clone();
+    let map = q.map().clone();
     q.set_conditions(|d| {
         let f = map.orbit(d, Orbit::HalfFace);
         let on = |k: usize| f.iter().all(|&e| map.point(e)[k] == 0.0);
@@ -443,7 +443,7 @@ fn residual_threshold_rejects_distorted_copies_and_orientation_follows_the_query
     q.max_residual = None;
     q.orient_by_geometry = true;
     let r = find_matches(&grid(4, 1, 1), &QuerySet::new(vec![q.clone()]), &MatchOptions::default());
-    let first = q.map.point(q.labelling.darts[0]);
+    let first = q.map().point(q.labelling().darts[0]);
     let gm = grid(4, 1, 1);
     for m in &r.matches {
         let p = gm.point(m.start);
@@ -491,7 +491,7 @@ fn geometric_orientation_keeps_the_image_that_fits_best() {
         for q in [&q, &q_eps] {
             let r = find_matches(&m, &QuerySet::new(vec![q.clone()]), &MatchOptions::default());
             assert_eq!(r.matches.len(), 1);
-            let (s, d1) = (r.matches[0].start, q.labelling.darts[0]);
+            let (s, d1) = (r.matches[0].start, q.labelling().darts[0]);
             assert_eq!(m.point(s), affine(q_map.point(d1)), "{}: listed from corner {first}", q.name);
             assert_eq!(m.point(m.next(s)), affine(q_map.point(q_map.next(d1))), "{}: corner {first}", q.name);
         }
@@ -510,7 +510,7 @@ fn geometric_orientation_keeps_the_image_that_fits_best() {
     for first in 0..4 {
         let m = hex_listed_from(&hex_grid(1, 1, 1), first, |p| p);
         let start_with = |q: &Query| find_matches(&m, &QuerySet::new(vec![q.clone()]), &MatchOptions::default());
-        let (s, d1) = (start_with(&q).matches[0].start, q.labelling.darts[0]);
+        let (s, d1) = (start_with(&q).matches[0].start, q.labelling().darts[0]);
         assert_eq!((m.point(s), m.point(m.next(s))), (plain.point(d1), plain.point(plain.next(d1))), "corner {first}");
         let found_at = start_with(&unoriented).matches[0].start;
         assert_eq!(start_with(&residual_only).matches[0].start, found_at, "corner {first}");
@@ -524,7 +524,7 @@ fn geometric_orientation_keeps_the_image_that_fits_best() {
     for first in 0..4 {
         let m = hex_listed_from(&hex_grid(1, 1, 1), first, far_turn);
         let r = find_matches(&m, &QuerySet::new(vec![q.clone()]), &MatchOptions::default());
-        let (s, d1) = (r.matches[0].start, q.labelling.darts[0]);
+        let (s, d1) = (r.matches[0].start, q.labelling().darts[0]);
         for (got, want) in [(m.point(s), plain.point(d1)), (m.point(m.next(s)), plain.point(plain.next(d1)))] {
             let want = far_turn(want);
             assert!((0..3).all(|i| (got[i] - want[i]).abs() < 1e-9), "corner {first}: {got:?} vs {want:?}");

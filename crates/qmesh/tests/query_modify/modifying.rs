@@ -184,7 +184,7 @@ fn apply_runs_a_function_on_every_selected_match() {
     let mut m = grid(4, 2, 1);
     let q = Query::new("pair", grid(2, 1, 1), |_| Condition::Any).unwrap();
     let shared: Vec<usize> =
-        q.labelling.darts.iter().enumerate().filter(|(_, d)| !q.map.is_free(**d, 3)).map(|(k, _)| k).collect();
+        q.labelling().darts.iter().enumerate().filter(|(_, d)| !q.map().is_free(**d, 3)).map(|(k, _)| k).collect();
     let merge = move |map: &mut CMap3, _: &Query, darts: &[qmesh::cmap::Dart]| map.remove_face(darts[shared[0]]);
     let rule = Rule { action: Action::Apply(std::sync::Arc::new(merge)), ..Rule::find(q) };
     let r = run_rules(&mut m, &[rule]);
@@ -272,8 +272,8 @@ fn a_query_is_placed_where_its_geometry_fits() {
     let q = Query::new("cube", cube_from(0, 1.0), |_| Condition::Any).unwrap();
     let pair = grid(2, 1, 1);
     let m = embed(&q, &pair).expect("a cube is in a pair");
-    for (&x, &y) in q.labelling.darts.iter().zip(&m) {
-        assert_eq!(q.map.point(x), pair.point(y), "label of {}", x.raw());
+    for (&x, &y) in q.labelling().darts.iter().zip(&m) {
+        assert_eq!(q.map().point(x), pair.point(y), "label of {}", x.raw());
     }
     let mut flat = hex_grid(2, 1, 1);
     flat.points.iter_mut().for_each(|p| *p = [0.0; 3]);

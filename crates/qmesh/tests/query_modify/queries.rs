@@ -46,7 +46,7 @@ fn reach_counts_faces_crossed_from_the_start_volume() {
     assert_eq!((from(end), from(middle)), (2, 1));
     assert_eq!(query(grid(1, 1, 1)).reach(), 0);
     let block = query(grid(2, 2, 2));
-    assert_eq!((block.nb_volumes(), block.labelling.len(), block.labelling.is_empty()), (8, 8 * 24, false));
+    assert_eq!((block.nb_volumes(), block.labelling().len(), block.labelling().is_empty()), (8, 8 * 24, false));
 }
 
 /// A hexahedron squashed flat (every z = 0): its vertices span a plane only.
@@ -134,7 +134,7 @@ fn min_hex_quality_keeps_the_matches_above_it_among_many_queries() {
     let cube = query(grid(1, 1, 1));
     let c = cube.corners.unwrap();
     let mut mirrored = cube.clone();
-    let last = mirrored.labelling.darts[23];
+    let last = mirrored.labelling().darts[23];
     mirrored.set_conditions(|d| if d == last { Condition::Boundary } else { Condition::Any });
     mirrored.set_corners([c[4], c[5], c[6], c[7], c[0], c[1], c[2], c[3]]);
     let set = QuerySet::new((0..140).map(|i| if i % 2 == 0 { cube.clone() } else { mirrored.clone() }).collect());

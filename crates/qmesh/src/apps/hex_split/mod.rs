@@ -22,6 +22,7 @@
 mod classify;
 mod enumerate;
 mod realize;
+mod rule_table;
 mod rules;
 mod stored;
 #[rustfmt::skip]

@@ -3,7 +3,9 @@
 //! dart (no folded match with fewer than 8 vertices), and the target one volume, the
 //! hexahedron with its six faces triangulated as the query's boundary.
 
-use super::{HEX_FACES, HexSplits};
+#[cfg(test)]
+use super::HEX_FACES;
+use super::HexSplits;
 use crate::build::{BuildError, BuildOptions, CellKind, IndexedMesh, build_volume_map};
 use crate::cmap::{CMap3, Dart, Standard};
 use crate::modify::{ModifyError, Plan};
@@ -148,20 +150,20 @@ pub(super) fn rule_start(tets: &[[u8; 4]], points: &[[f64; 3]; 8]) -> (u32, Vec<
 }
 
 /// One rule per oriented class that has a positive realisation (2025 §7.1: 171 classes
-/// up to symmetry, each chiral one in both mirror images).
+/// up to symmetry, each chiral one in both mirror images), read from the stored table
+/// (`rule_table.rs`; each is what [`compile_rule`] makes of its class).
 ///
 /// # Errors
-/// Only on a defect of the generated maps (never expected; tested).
+/// None today: the stored rules are checked by a test. The `Result` stays for the
+/// plans and target maps built from them later.
 pub fn hex_rules() -> Result<Vec<HexRule>, HexRuleError> {
-    use rayon::prelude::*;
-    let splits = HexSplits::get();
-    let realised: Vec<usize> =
-        (0..splits.oriented.len()).filter(|&o| splits.oriented[o].realization.is_some()).collect();
-    realised.into_par_iter().map(|o| rule_of(splits, o)).collect()
+    Ok(super::rule_table::stored_rules())
 }
 
-/// The rule of oriented class `o` (which has a realisation).
-fn rule_of(splits: &HexSplits, o: usize) -> Result<HexRule, HexRuleError> {
+#[cfg(test)]
+/// The rule of oriented class `o` (which has a realisation), compiled from its query
+/// map: what the stored table holds.
+pub(super) fn compile_rule(splits: &HexSplits, o: usize) -> Result<HexRule, HexRuleError> {
     let class = &splits.oriented[o];
     {
         let points = class.realization.expect("only realised classes get rules");
@@ -186,7 +188,7 @@ fn rule_of(splits: &HexSplits, o: usize) -> Result<HexRule, HexRuleError> {
         )
         .map_err(|source| HexRuleError::Query { class: err_class, source })?;
         let corners = query.corners.expect("given");
-        let (map, labelling) = (&query.map, &query.labelling);
+        let (map, labelling) = (query.map(), query.labelling());
         // Per pair of nodes, the face of [`HEX_FACES`] it is a diagonal of; each boundary
         // dart along one goes to its face, in label order (one pass over the free darts).
         let mut face_of = [[u8::MAX; 8]; 8];
@@ -260,19 +262,19 @@ mod tests {
             assert_eq!(r.query.nb_darts(), 12 * tets);
             assert_eq!(r.query.nb_volumes(), tets);
             // The stored automorphisms are those a search finds.
-            let searched = Automorphisms::of(&r.query.map, &r.query.labelling, &r.query.word);
+            let searched = Automorphisms::of(r.query.map(), r.query.labelling(), &r.query.word);
             assert_eq!(searched.start_labels(), r.query.automorphisms.start_labels(), "{}", r.query.name);
             assert_eq!(searched.count(), r.query.automorphisms.count());
-            assert!(r.query.map.is_valid().is_empty());
+            assert!(r.query.map().is_valid().is_empty());
             // The 36 boundary darts stay (the hexahedron's), the others go.
             assert_eq!(plan.darts_removed(), 12 * tets - 36, "{}", r.query.name);
             assert_eq!(plan.darts_added(), 0);
             for (f, d) in r.target.diagonals.iter().enumerate() {
                 let q = HEX_FACES[f];
-                let v = |l: u32| r.query.map.vertex_of(r.query.labelling.darts[l as usize - 1]);
+                let v = |l: u32| r.query.map().vertex_of(r.query.labelling().darts[l as usize - 1]);
                 for &l in d {
                     let mut e =
-                        [v(l), r.query.map.vertex_of(r.query.map.next(r.query.labelling.darts[l as usize - 1]))];
+                        [v(l), r.query.map().vertex_of(r.query.map().next(r.query.labelling().darts[l as usize - 1]))];
                     e.sort_unstable();
                     let mut a = [u32::from(q[0]), u32::from(q[2])];
                     let mut b = [u32::from(q[1]), u32::from(q[3])];
