@@ -154,12 +154,19 @@ impl Labelling {
     }
 }
 
-/// A query word (2025 Def. 5): `3n` symbols, `symbols[3(k-1) + (i-1)]` = l(βi(d_k)), or
+/// The symbol of a compiled symbol (`NEW` cleared on labels; conditions, which have
+/// that bit too, as they are).
+#[inline]
+fn symbol_of_op(s: u32) -> u32 {
+    if s < FIRST_CONDITION { s & !NEW } else { s }
+}
+
+/// A query word (2025 Def. 5): `3n` symbols, symbol 3(k-1) + (i-1) = l(βi(d_k)), or
 /// the condition code of d_k when i = 3 and d_k is 3-free.
 #[derive(Clone, Debug, PartialEq, Eq, Hash)]
 pub struct QueryWord {
-    symbols: Vec<u32>,
-    /// The symbols with [`NEW`] on labels met for the first time.
+    /// The symbols as matching reads them: [`NEW`] set on labels met for the first
+    /// time (the symbols themselves are these without it).
     ops: Vec<u32>,
 }
 
@@ -183,8 +190,8 @@ impl QueryWord {
     pub(crate) fn from_symbols(symbols: Vec<u32>) -> QueryWord {
         let mut seen = 1; // label 1 is the start dart
         let ops = symbols
-            .iter()
-            .map(|&s| {
+            .into_iter()
+            .map(|s| {
                 if s < FIRST_CONDITION && s > seen {
                     seen = s;
                     s | NEW
@@ -193,7 +200,7 @@ impl QueryWord {
                 }
             })
             .collect();
-        QueryWord { symbols, ops }
+        QueryWord { ops }
     }
 
     /// The compiled symbols matching reads.
@@ -205,19 +212,18 @@ impl QueryWord {
     /// Number of darts of the query.
     #[inline]
     pub fn nb_darts(&self) -> usize {
-        self.symbols.len() / 3
+        self.ops.len() / 3
     }
 
-    /// All symbols.
-    #[inline]
-    pub fn symbols(&self) -> &[u32] {
-        &self.symbols
+    /// All symbols, in order.
+    pub fn symbols(&self) -> impl ExactSizeIterator<Item = u32> + '_ {
+        self.ops.iter().map(|&s| symbol_of_op(s))
     }
 
     /// The symbol of βi (i in 1..=3) of the dart labelled k (k in 1..=n).
     #[inline]
     pub fn symbol(&self, k: usize, i: usize) -> u32 {
-        self.symbols[3 * (k - 1) + (i - 1)]
+        symbol_of_op(self.ops[3 * (k - 1) + (i - 1)])
     }
 
     /// The condition of the dart labelled k, when it is 3-free in the query.
@@ -274,22 +280,20 @@ impl QueryWord {
     /// # Panics
     /// If that dart is 3-sewn in the query.
     pub fn set_condition(&mut self, k: usize, c: Condition) {
-        let s = &mut self.symbols[3 * (k - 1) + 2];
+        let s = &mut self.ops[3 * (k - 1) + 2];
         assert!(*s >= FIRST_CONDITION, "dart {k} of the query is 3-sewn");
         *s = c.code();
-        self.ops[3 * (k - 1) + 2] = c.code();
     }
 
     /// The same word with every condition replaced by `c`.
     pub fn with_all_conditions(&self, c: Condition) -> QueryWord {
-        let symbols = self.symbols.iter().map(|&s| if s >= FIRST_CONDITION { c.code() } else { s }).collect();
-        QueryWord::from_symbols(symbols)
+        QueryWord { ops: self.ops.iter().map(|&s| if s >= FIRST_CONDITION { c.code() } else { s }).collect() }
     }
 
     /// Human-readable form, `⟨2,5,ε | 3,…⟩`-like, for tests and audits.
     pub fn display(&self) -> String {
-        let parts: Vec<String> = self
-            .symbols
+        let symbols: Vec<u32> = self.symbols().collect();
+        let parts: Vec<String> = symbols
             .chunks(3)
             .map(|c| {
                 c.iter()

@@ -111,7 +111,7 @@ fn encode(rules: &[HexRule]) -> Vec<u8> {
         out.extend(t.diagonals.iter().flatten().map(|&l| label(l)));
         out.push(label(t.keep));
         out.push(u8::try_from(q.automorphisms.images().count()).expect("automorphism count"));
-        for (k, &s) in q.word.symbols().iter().enumerate() {
+        for (k, s) in q.word.symbols().enumerate() {
             let free = k % 3 == 2 && q.word.condition(k / 3 + 1).is_some();
             assert!(!free || q.word.condition(k / 3 + 1) == Some(Condition::NoConnection), "rules use ↔ only");
             out.push(if free { 0 } else { label(s) });

@@ -144,7 +144,7 @@ pub(super) fn rule_start(tets: &[[u8; 4]], points: &[[f64; 3]; 8]) -> (u32, Vec<
     let map = split_query_map(tets, points);
     let word = |l: &Labelling| QueryWord::new(&map, l, |_| Condition::NoConnection);
     let labelling = |d: Dart| Labelling::new(&map, d).expect("query maps are connected");
-    let start = map.darts().min_by_key(|&d| word(&labelling(d)).symbols().to_vec()).expect("not empty");
+    let start = map.darts().min_by_key(|&d| word(&labelling(d)).symbols().collect::<Vec<_>>()).expect("not empty");
     let l = labelling(start);
     (start.raw(), Automorphisms::of(&map, &l, &word(&l)).start_labels())
 }
@@ -247,8 +247,8 @@ mod tests {
         // Canonical words are a complete invariant of connected maps: two rules share a
         // word only when one complex of tetrahedra is a hexahedron in two ways (other
         // corners), and then both readings must stay (they score differently).
-        let mut by_word: rustc_hash::FxHashMap<&[u32], Vec<&HexRule>> = Default::default();
-        rules.iter().for_each(|r| by_word.entry(r.query.word.symbols()).or_default().push(r));
+        let mut by_word: rustc_hash::FxHashMap<Vec<u32>, Vec<&HexRule>> = Default::default();
+        rules.iter().for_each(|r| by_word.entry(r.query.word.symbols().collect()).or_default().push(r));
         for same in by_word.values().filter(|v| v.len() > 1) {
             assert_eq!(same.len(), 2);
             // Same labels, other corners: the same darts read as another hexahedron.
