@@ -93,11 +93,11 @@ impl Automorphisms {
         Self::from_candidates(map, labelling, word, candidates)
     }
 
-    #[cfg(test)]
     /// Each automorphism other than the identity: the image of every label (label k
     /// goes to `image[k - 1]`), whether it keeps the boundary conditions, and whether
     /// it moves the hexahedral corners as a cube symmetry (see
     /// [`restrict_to_corner_symmetries`](Self::restrict_to_corner_symmetries)).
+    #[cfg(test)]
     pub(crate) fn images(&self) -> impl Iterator<Item = (&[u32], bool, bool)> {
         self.others.iter().map(|p| (p.image.as_slice(), p.keeps_conditions, p.cube))
     }

@@ -87,13 +87,13 @@ impl Query {
         Self::compile(name, map, start, condition, None::<fn(&CMap3, &Labelling) -> [u32; 8]>, None)
     }
 
-    #[cfg(test)]
     /// As [`from_start`](Self::from_start) without checking the map's validity, for the
     /// maps qmesh builds itself (rule books of hundreds of queries, whose validity their
     /// tests assert), with the hexahedral corners given by `corners(map, labelling)`
     /// (see [`set_corners`](Self::set_corners)) instead of found from the geometry, and
     /// the automorphisms, when `automorphism_starts` is given, computed only from those
     /// labels (stored from an earlier search).
+    #[cfg(test)]
     pub(crate) fn from_valid_start_with_corners(
         name: &str,
         map: CMap3,

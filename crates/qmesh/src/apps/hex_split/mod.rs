@@ -10,7 +10,8 @@
 //! The enumeration and the realisation search take about a second; every run of
 //! `recombine` or `tetrahedralize` needs their result, so it is stored in `table.rs`,
 //! generated from [`HexSplits::enumerate`] and checked against it by a test
-//! (`stored::tests`), which also regenerates it (`QMESH_BLESS=1`).
+//! (`stored::tests`), which also regenerates it (`QMESH_BLESS=1`). The recombination
+//! rules compiled from it are stored the same way, in `rules.bin` (`rule_table`).
 //!
 //! ```
 //! let s = qmesh::apps::HexSplits::get();

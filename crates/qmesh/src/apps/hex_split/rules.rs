@@ -160,9 +160,9 @@ pub fn hex_rules() -> Result<Vec<HexRule>, HexRuleError> {
     Ok(super::rule_table::stored_rules())
 }
 
-#[cfg(test)]
 /// The rule of oriented class `o` (which has a realisation), compiled from its query
 /// map: what the stored table holds.
+#[cfg(test)]
 pub(super) fn compile_rule(splits: &HexSplits, o: usize) -> Result<HexRule, HexRuleError> {
     let class = &splits.oriented[o];
     {
