@@ -110,6 +110,17 @@ fn convert_refuses_to_overwrite_its_input_and_reports_errors() {
     let (code, said, err) = qmesh(&["convert", "-q", grid.to_str().unwrap(), quiet.to_str().unwrap()]);
     assert_eq!((code, said.as_str()), (0, ""), "{err}");
     assert_eq!(std::fs::read(&quiet).unwrap(), std::fs::read(&out).unwrap());
+    // -o OUT, as with every other command; one output only.
+    let flagged = temp("c_flag.msh");
+    let (code, _, err) = qmesh(&["convert", grid.to_str().unwrap(), "-o", flagged.to_str().unwrap(), "-q"]);
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(std::fs::read(&flagged).unwrap(), std::fs::read(&out).unwrap());
+    let (code, _, err) =
+        qmesh(&["convert", grid.to_str().unwrap(), out.to_str().unwrap(), "-o", flagged.to_str().unwrap()]);
+    assert_eq!(code, 2, "{err}");
+    let (code, _, err) = qmesh(&["convert", grid.to_str().unwrap()]);
+    assert_eq!(code, 2);
+    assert!(err.contains("OUTPUT"), "{err}");
     let (code, _, err) = qmesh(&["info", "/nonexistent/x.vtk"]);
     assert_eq!(code, 2);
     assert!(err.starts_with("error: /nonexistent/x.vtk"), "{err}");

@@ -1,4 +1,4 @@
-//! `qmesh convert IN OUT`: read, build the map, write (atomically).
+//! `qmesh convert IN OUT` (or `-o OUT`): read, build the map, write (atomically).
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -10,11 +10,19 @@ use qmesh::io::{Format, WriteOptions, indexed_for, load_map, resolve_format, wri
 use super::{InputArgs, parse_format};
 
 #[derive(clap::Args, Debug)]
+#[command(group(clap::ArgGroup::new("out").required(true).args(["output", "output_flag"])))]
+#[command(
+    override_usage = "qmesh convert [OPTIONS] <INPUT> <OUTPUT>\n       qmesh convert [OPTIONS] <INPUT> -o <OUTPUT>"
+)]
 pub struct Args {
     #[command(flatten)]
     pub input: InputArgs,
     /// Output file; its extension picks the format unless --to is given.
-    pub output: PathBuf,
+    pub output: Option<PathBuf>,
+    /// The output file given as the other commands take it (`-o OUT`), instead of
+    /// after the input.
+    #[arg(short = 'o', long = "output", value_name = "OUTPUT")]
+    pub output_flag: Option<PathBuf>,
     /// Output format, overriding the output extension.
     #[arg(long)]
     pub to: Option<String>,
@@ -33,8 +41,9 @@ pub struct Args {
     pub quiet: bool,
 }
 
-pub fn run(a: Args) -> Result<ExitCode> {
-    super::refuse_to_overwrite(&a.input.input, &a.output, a.force)?;
+pub fn run(mut a: Args) -> Result<ExitCode> {
+    let output = a.output.take().or(a.output_flag.take()).expect("clap requires one output");
+    super::refuse_to_overwrite(&a.input.input, &output, a.force)?;
     let opts = BuildOptions { fix_orientation: a.input.fix_orientation };
     let loaded = load_map(&a.input.input, parse_format(&a.input.format)?, &opts)?;
     for w in &loaded.warnings {
@@ -46,19 +55,19 @@ pub fn run(a: Args) -> Result<ExitCode> {
             loaded.report.inverted_cells
         );
     }
-    let format = resolve_format(&a.output, parse_format(&a.to)?)?;
+    let format = resolve_format(&output, parse_format(&a.to)?)?;
     let opts = WriteOptions { binary: a.binary };
     if format == Format::Moka {
-        write_map(&a.output, &loaded.map, Some(format), &opts)?;
+        write_map(&output, &loaded.map, Some(format), &opts)?;
         if !a.quiet {
             let c = loaded.map.count_cells();
-            println!("wrote {} (the map: {} darts, {} volumes)", a.output.display(), loaded.map.nb_darts(), c.volumes);
+            println!("wrote {} (the map: {} darts, {} volumes)", output.display(), loaded.map.nb_darts(), c.volumes);
         }
         return Ok(ExitCode::SUCCESS);
     }
     let unused = loaded.report.unreferenced_points;
     let mesh = indexed_for(&loaded.map, &loaded.cell_arrays, format, !a.drop_unused);
-    write_indexed(&a.output, &mesh, format, &opts)?;
+    write_indexed(&output, &mesh, format, &opts)?;
     if a.quiet {
         return Ok(ExitCode::SUCCESS);
     }
@@ -70,7 +79,7 @@ pub fn run(a: Args) -> Result<ExitCode> {
     } else {
         format!("{} polygons", mesh.nb_polygons())
     };
-    println!("wrote {} ({} points, {what})", a.output.display(), mesh.points.len());
+    println!("wrote {} ({} points, {what})", output.display(), mesh.points.len());
     if unused > 0 && !(format.is_surface() && loaded.map.dimension() == 3) {
         if a.drop_unused {
             println!("  {unused} points that no cell uses were left out (--drop-unused)");
