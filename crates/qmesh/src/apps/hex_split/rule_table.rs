@@ -162,6 +162,30 @@ mod tests {
         }
     }
 
+    /// Both automorphism flags survive the layout, whatever their values (every rule
+    /// of today's table keeps its conditions, all `↔`, so the table alone never shows
+    /// a cleared first flag).
+    #[test]
+    fn automorphism_flags_round_trip() {
+        let mut rules = stored_rules();
+        let rule = rules.iter_mut().find(|r| r.query.automorphisms.images().count() >= 2).unwrap();
+        let flipped: Vec<(Vec<u32>, bool, bool)> = rule
+            .query
+            .automorphisms
+            .images()
+            .enumerate()
+            .map(|(k, (image, keeps, cube))| (image.to_vec(), keeps && k % 2 == 0, cube && k % 2 == 1))
+            .collect();
+        rule.query.automorphisms = Automorphisms::from_images(flipped.clone());
+        let name = rule.query.name.clone();
+        let back = decode(&encode(&rules));
+        let again = back.iter().find(|r| r.query.name == name).unwrap();
+        let read: Vec<(Vec<u32>, bool, bool)> =
+            again.query.automorphisms.images().map(|(i, k, c)| (i.to_vec(), k, c)).collect();
+        assert_eq!(read, flipped);
+        assert!(flipped.iter().any(|f| !f.1) && flipped.iter().any(|f| f.2));
+    }
+
     /// A table cut short or with another header is refused (by a panic: the table is
     /// compiled in, so this is a defect of qmesh, never of the user's input).
     #[test]
