@@ -151,7 +151,7 @@ pub(super) fn rule_start(tets: &[[u8; 4]], points: &[[f64; 3]; 8]) -> (u32, Vec<
 
 /// One rule per oriented class that has a positive realisation (2025 §7.1: 171 classes
 /// up to symmetry, each chiral one in both mirror images), read from the stored table
-/// (`rule_table.rs`; each is what [`compile_rule`] makes of its class).
+/// (`rule_table.rs`; each is what the test-only `compile_rule` makes of its class).
 ///
 /// # Errors
 /// None today: the stored rules are checked by a test. The `Result` stays for the
