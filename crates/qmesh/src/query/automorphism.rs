@@ -102,7 +102,7 @@ impl Automorphisms {
         self.others.iter().map(|p| (p.image.as_slice(), p.keeps_conditions, p.cube))
     }
 
-    /// The automorphisms that [`images`](Self::images) listed: for queries stored compiled.
+    /// The automorphisms that `images` (test-only) listed: for queries stored compiled.
     pub(crate) fn from_images(images: impl IntoIterator<Item = (Vec<u32>, bool, bool)>) -> Automorphisms {
         let others =
             images.into_iter().map(|(image, keeps_conditions, cube)| Permutation { image, keeps_conditions, cube });

@@ -1,10 +1,10 @@
 //! The recombination rules stored compiled (`rules.bin`): per rule its word, its
 //! automorphisms, its hexahedral corners and its target's diagonals, as
-//! [`compile_rule`] computes them from the catalogue. Reading them takes no query map:
+//! `compile_rule` (test-only) computes them from the catalogue. Reading them takes no query map:
 //! a rule's map is rebuilt only when a match of it is replaced (its modify plan), so
 //! a recombination starts in a fraction of a millisecond with a few hundred kilobytes
 //! instead of compiling 330 query maps. A test checks the file against
-//! [`compile_rule`] byte for byte and rewrites it with `QMESH_BLESS=1`.
+//! `compile_rule` byte for byte and rewrites it with `QMESH_BLESS=1`.
 //!
 //! Layout (every number one byte unless said; labels fit in a byte, a rule has at most
 //! 180 darts): the magic `QMHR`, the version, the rule count (2 bytes, little endian);

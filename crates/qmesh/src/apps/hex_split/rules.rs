@@ -25,7 +25,7 @@ pub struct HexTarget {
     pub oriented: usize,
     /// Per VTK node, the label of a query dart at that node.
     pub corners: [u32; 8],
-    /// Per face of [`HEX_FACES`], the labels of the two boundary darts along its
+    /// Per face of [`HEX_FACES`](super::HEX_FACES), the labels of the two boundary darts along its
     /// diagonal (one in each triangle).
     pub diagonals: [[u32; 2]; 6],
     /// A boundary dart on an edge of the hexahedron (not a diagonal): it stays in the
