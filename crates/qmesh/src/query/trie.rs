@@ -12,7 +12,7 @@ use crate::cmap::{BitSet, CMap3};
 /// on the way into it (starting at word position `depth`), its children
 /// `children[first..first + count]` (their runs start with distinct symbols), and the
 /// words it ends, `terminals[t_first..t_first + t_count]` (query indices).
-#[derive(Clone, Copy, Debug, Default)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
 struct Node {
     run: u32,
     len: u32,
@@ -29,7 +29,7 @@ const MIXED: u32 = u32::MAX;
 
 /// A prefix tree of query words, with chains of single-child nodes merged into runs so
 /// that the symbols of one word are checked in a tight loop.
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct PrefixTree {
     nodes: Vec<Node>,
     children: Vec<u32>,
@@ -39,37 +39,38 @@ pub struct PrefixTree {
 }
 
 impl PrefixTree {
-    /// The tree of `words` (word i ends at a terminal naming i), built from the words
-    /// sorted: the words through a node are a contiguous range of the sorted list, and
-    /// a run ends where the range's first and last words part (or one ends). Children
-    /// are in order of their smallest word index, terminals in word order.
+    /// The tree of `words` (word i ends at a terminal naming i). The words through a
+    /// node are a contiguous range of one list of word indices; each node orders its
+    /// range by the symbol read next (words ending there first), then by index, so
+    /// that its children's ranges are contiguous. A run ends where the words of a
+    /// child part (or one ends). Children are in order of their smallest word index,
+    /// terminals in word order. Only one symbol per word is compared at each node, so
+    /// building costs about one pass over the words' shared symbols.
     pub fn new<'a>(words: impl IntoIterator<Item = &'a QueryWord>) -> PrefixTree {
         let words: Vec<&[u32]> = words.into_iter().map(|w| w.ops()).collect();
         let max_darts = words.iter().map(|w| w.len() / 3).max().unwrap_or(0);
-        let mut sorted: Vec<u32> = (0..words.len() as u32).collect();
-        sorted.sort_by(|&a, &b| words[a as usize].cmp(words[b as usize]).then(a.cmp(&b)));
-        let word = |i: usize| words[sorted[i] as usize];
-        let common = |lo: usize, hi: usize, from: usize| -> usize {
-            let (a, b) = (word(lo), word(hi - 1));
-            from + a[from..].iter().zip(&b[from..]).take_while(|(x, y)| x == y).count()
-        };
+        let mut order: Vec<u32> = (0..words.len() as u32).collect();
+        let word = |i: u32| words[i as usize];
         let mut tree = PrefixTree { max_darts, ..Default::default() };
         tree.nodes.push(Node::default());
-        // (compressed node, its range of sorted words, depth below it)
+        // (compressed node, its range of `order`, depth below it)
         let mut todo = vec![(0usize, 0usize, words.len(), 0usize)];
+        let mut groups: Vec<(u32, usize, usize)> = Vec::new();
         while let Some((c, lo, hi, depth)) = todo.pop() {
-            // Words ending here sort first in the range.
-            let ends = (lo..hi).take_while(|&i| word(i).len() == depth).count();
+            let range = &mut order[lo..hi];
+            range.sort_unstable_by_key(|&i| (word(i).get(depth).map_or(0, |&s| u64::from(s) + 1), i));
+            let ends = range.iter().take_while(|&&i| word(i).len() == depth).count();
             tree.nodes[c].t_first = tree.terminals.len() as u32;
             tree.nodes[c].t_count = ends as u32;
-            tree.terminals.extend((lo..lo + ends).map(|i| sorted[i]));
-            // Groups of words by their symbol at `depth`, by smallest word index.
-            let mut groups: Vec<(u32, usize, usize)> = Vec::new();
-            let mut i = lo + ends;
-            while i < hi {
-                let sym = word(i)[depth];
-                let j = (i..hi).find(|&j| word(j)[depth] != sym).unwrap_or(hi);
-                groups.push(((i..j).map(|k| sorted[k]).min().expect("not empty"), i, j));
+            tree.terminals.extend_from_slice(&range[..ends]);
+            // Groups of words by their symbol at `depth`; each starts with its
+            // smallest word index.
+            groups.clear();
+            let mut i = ends;
+            while i < range.len() {
+                let sym = word(range[i])[depth];
+                let j = (i..range.len()).find(|&j| word(range[j])[depth] != sym).unwrap_or(range.len());
+                groups.push((range[i], lo + i, lo + j));
                 i = j;
             }
             groups.sort_unstable();
@@ -78,9 +79,12 @@ impl PrefixTree {
             let first = tree.children.len();
             tree.children.resize(first + groups.len(), 0);
             for (k, &(smallest, a, b)) in groups.iter().enumerate() {
-                let end = common(a, b, depth);
+                let lead = word(order[a]);
+                let end = order[a + 1..b].iter().fold(lead.len(), |end, &o| {
+                    depth + lead[depth..end].iter().zip(&word(o)[depth..]).take_while(|(x, y)| x == y).count()
+                });
                 let run = tree.symbols.len() as u32;
-                tree.symbols.extend_from_slice(&word(a)[depth..end]);
+                tree.symbols.extend_from_slice(&lead[depth..end]);
                 let owner = if b - a == 1 { smallest } else { MIXED };
                 let id = tree.nodes.len();
                 tree.nodes.push(Node {
@@ -198,5 +202,95 @@ impl PrefixTree {
         }
         annot.stack = stack;
         annot.alive = alive;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    /// The tree as the words sorted lexicographically give it (the first definition:
+    /// a node's words are a range of the sorted list, a run ends where that range's
+    /// first and last words part), for comparison.
+    fn from_sorted(words: &[QueryWord]) -> PrefixTree {
+        let ops: Vec<&[u32]> = words.iter().map(|w| w.ops()).collect();
+        let mut sorted: Vec<u32> = (0..ops.len() as u32).collect();
+        sorted.sort_by(|&a, &b| ops[a as usize].cmp(ops[b as usize]).then(a.cmp(&b)));
+        let word = |i: usize| ops[sorted[i] as usize];
+        let mut tree =
+            PrefixTree { max_darts: ops.iter().map(|w| w.len() / 3).max().unwrap_or(0), ..Default::default() };
+        tree.nodes.push(Node::default());
+        let mut todo = vec![(0usize, 0usize, ops.len(), 0usize)];
+        while let Some((c, lo, hi, depth)) = todo.pop() {
+            let ends = (lo..hi).take_while(|&i| word(i).len() == depth).count();
+            (tree.nodes[c].t_first, tree.nodes[c].t_count) = (tree.terminals.len() as u32, ends as u32);
+            tree.terminals.extend((lo..lo + ends).map(|i| sorted[i]));
+            let mut groups = Vec::new();
+            let mut i = lo + ends;
+            while i < hi {
+                let j = (i..hi).find(|&j| word(j)[depth] != word(i)[depth]).unwrap_or(hi);
+                groups.push(((i..j).map(|k| sorted[k]).min().unwrap(), i, j));
+                i = j;
+            }
+            groups.sort_unstable();
+            (tree.nodes[c].first, tree.nodes[c].count) = (tree.children.len() as u32, groups.len() as u32);
+            for &(smallest, a, b) in &groups {
+                let (x, y) = (word(a), word(b - 1));
+                let end = depth + x[depth..].iter().zip(&y[depth..]).take_while(|(p, q)| p == q).count();
+                let node = Node {
+                    run: tree.symbols.len() as u32,
+                    len: (end - depth) as u32,
+                    depth: depth as u32,
+                    owner: if b - a == 1 { smallest } else { MIXED },
+                    ..Default::default()
+                };
+                tree.symbols.extend_from_slice(&x[depth..end]);
+                tree.children.push(tree.nodes.len() as u32);
+                todo.push((tree.nodes.len(), a, b, end));
+                tree.nodes.push(node);
+            }
+        }
+        tree
+    }
+
+    /// Each word, read from the root along the runs, ends at a terminal naming it.
+    fn reads_every_word(tree: &PrefixTree, words: &[QueryWord]) {
+        for (q, w) in words.iter().enumerate() {
+            let (mut node, mut at) = (0, 0);
+            while at < w.ops().len() {
+                let child = tree.children_of(node).iter().map(|&c| c as usize).find(|&c| {
+                    let run = tree.run_of(c);
+                    w.ops()[at..].starts_with(run)
+                });
+                node = child.unwrap_or_else(|| panic!("word {q} leaves the tree at symbol {at}"));
+                at += tree.run_of(node).len();
+            }
+            assert!(tree.terminals_of(node).contains(&(q as u32)), "word {q} does not end at its terminal");
+        }
+    }
+
+    #[test]
+    fn the_rule_book_tree_is_the_sorted_words_tree() {
+        let words: Vec<QueryWord> =
+            crate::apps::hex_rules().unwrap().into_iter().map(|r| r.query.word.clone()).collect();
+        let tree = PrefixTree::new(&words);
+        assert_eq!(tree, from_sorted(&words));
+        reads_every_word(&tree, &words);
+    }
+
+    proptest! {
+        /// Random words on three labels (so that prefixes are shared, words repeat and
+        /// some words are prefixes of others): the same tree as the sorted words give.
+        #[test]
+        fn same_tree_as_the_sorted_words(raw in prop::collection::vec(prop::collection::vec(0u32..4, 0..5), 0..24)) {
+            let words: Vec<QueryWord> = raw
+                .iter()
+                .map(|w| QueryWord::from_symbols(w.iter().flat_map(|&s| [s.min(1), s, 1 + s % 2]).collect()))
+                .collect();
+            let tree = PrefixTree::new(&words);
+            prop_assert_eq!(&tree, &from_sorted(&words));
+            reads_every_word(&tree, &words);
+        }
     }
 }
