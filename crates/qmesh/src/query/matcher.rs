@@ -114,6 +114,11 @@ impl MatchVolumes {
     }
 
     /// Appends every match of `other`.
+    fn shrink_to_fit(&mut self) {
+        self.at.shrink_to_fit();
+        self.ids.shrink_to_fit();
+    }
+
     fn append(&mut self, other: MatchVolumes) {
         if other.at.is_empty() {
             return;
@@ -194,17 +199,22 @@ pub fn find_matches(map: &CMap3, set: &QuerySet, opts: &MatchOptions<'_>) -> Mat
         )
         .map(|(_, found)| found)
         .reduce(|| Found::new(set.queries.len()), Found::merge);
+    // The lists grew by doubling: what follows (selection, replacement) keeps them,
+    // so they give back the capacity they do not use.
+    let (mut matches, mut volumes) = (found.matches, found.volumes);
+    matches.shrink_to_fit();
+    volumes.shrink_to_fit();
     let mut r = MatchReport {
         per_query: vec![0; set.queries.len()],
         with_automorphisms: found.all,
         steps: found.steps,
-        volumes: found.volumes,
+        volumes,
         ..Default::default()
     };
-    for m in &found.matches {
+    for m in &matches {
         r.per_query[m.query as usize] += 1;
     }
-    r.matches = found.matches;
+    r.matches = matches;
     r.seconds = t.elapsed().as_secs_f64();
     r
 }
