@@ -30,7 +30,7 @@ pub struct Args {
     /// Cells shrunk toward their centroid by this factor (1 = no gap).
     #[arg(long, default_value_t = 0.85)]
     pub shrink: f64,
-    /// Keep the cells whose centroid satisfies AXIS<VALUE or AXIS>VALUE (e.g. x<0.5, or
+    /// Keep the cells whose centroid satisfies AXIS < VALUE or AXIS > VALUE (e.g. x<0.5, or
     /// x<50% of the mesh's extent); repeat to keep a box (--clip x>2 --clip x<3).
     #[arg(long)]
     pub clip: Vec<String>,

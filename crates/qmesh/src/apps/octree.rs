@@ -216,7 +216,7 @@ impl Octree {
         v
     }
 
-    /// Leaves outside the surface that it does not touch (see [`outside_among`]).
+    /// Leaves outside the surface that it does not touch (see `outside_among`, which decides them).
     pub fn outside_leaves(&self, surface: &TriangleBvh) -> Vec<OctCell> {
         let leaves = self.sorted_leaves();
         let touched: Vec<bool> = leaves.par_iter().map(|&c| surface.intersects_box(&self.root.cell_box(c))).collect();

@@ -113,7 +113,7 @@ pub fn transition_volume(c: Configuration) -> IndexedMesh {
     b.mesh
 }
 
-/// A cube in configuration `c` as one polyhedron, the way [`super::conformal`] finds
+/// A cube in configuration `c` as one polyhedron, the way [`super::conformal`](fn@super::conformal) finds
 /// it in a mesh: refined faces as 4 quadrilaterals, other faces with the midpoints of
 /// their split edges (for audits and tests of pattern sets).
 pub fn configuration_cell(c: Configuration) -> IndexedMesh {

@@ -2,7 +2,7 @@
 //!
 //! [`build_volume_map`] creates one volume per cell and 3-sews cells sharing a face
 //! (matched by vertex cycles in a hash map); [`build_surface_map`] 2-sews polygons
-//! along opposite half-edges; [`extract`] goes back to indexed cells for writing.
+//! along opposite half-edges; [`extract`](fn@extract) goes back to indexed cells for writing.
 
 mod adjacency;
 mod boundary;

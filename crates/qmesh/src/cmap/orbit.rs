@@ -254,7 +254,7 @@ fn stack_if_new<V: Visited>(seen: &V, stack: &mut Vec<u32>, n: u32) {
 
 /// Reusable traversal state for collecting single orbits without allocating per call.
 /// The first walks record visited darts in a hash set; a walker used more than
-/// [`HASHED_WALKS`] times switches to a bit set as large as the map, cleared dart by
+/// `HASHED_WALKS` (32) times switches to a bit set as large as the map, cleared dart by
 /// dart before each walk (the hash set costs ~10 % of a subdivision; the bit set would
 /// cost a map-sized allocation to a walker made for one orbit).
 #[derive(Clone, Debug, Default)]

@@ -14,7 +14,7 @@ use rayon::prelude::*;
 /// A 3D combinatorial map (2022 §2.2, 2025 §3.2) with one position per vertex.
 ///
 /// Storage is struct-of-arrays: per dart `[β0, β1, β2, β3]` (16 B) and the origin vertex
-/// id (4 B; [`DEAD`] marks a deleted slot), plus 32 mark bits (4 B) once a mark is first
+/// id (4 B; `u32::MAX` marks a deleted slot), plus 32 mark bits (4 B) once a mark is first
 /// used — 20 or 24 bytes per dart; positions live in their own table indexed by vertex
 /// id. Raw index 0 is the null dart ε.
 ///

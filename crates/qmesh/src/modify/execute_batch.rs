@@ -1,7 +1,7 @@
 //! Executing plans on many matches that share no dart (the faces or the volumes of one
 //! query-replace pass, 2022 §5.1): each match is resolved on any core into plain
 //! stores (positions, vertex ids, labels, betas), which one thread then makes in the
-//! matches' order. Darts and vertices are allocated as [`execute`](super::execute)
+//! matches' order. Darts and vertices are allocated as [`execute`](fn@super::execute)
 //! allocates them, match after match, so the map is the same, dart for dart, as
 //! executing the matches one by one, whatever the number of threads.
 
@@ -58,7 +58,7 @@ pub struct DisjointExecutor {
 }
 
 impl DisjointExecutor {
-    /// Executes every job, as [`execute`](super::execute) would one after another. The
+    /// Executes every job, as [`execute`](fn@super::execute) would one after another. The
     /// matches must be pairwise disjoint and no plan may delete darts (such jobs run
     /// one by one instead). Returns the new darts, job after job, in each plan's order.
     pub fn execute(&mut self, map: &mut CMap3, jobs: &[Job]) -> &[Dart] {
@@ -156,7 +156,7 @@ impl Sizes {
 }
 
 /// Resolves `job`, whose new darts are `new` and first created vertex `first_vertex`:
-/// the stores of [`execute`](super::execute)'s links, in its order, into the new
+/// the stores of [`execute`](fn@super::execute)'s links, in its order, into the new
 /// darts' records or into `out.stores`.
 fn resolve(map: &CMap3, job: &Job, new: &[Dart], first_vertex: u32, out: Resolved) {
     let plan = job.plan;

@@ -3,7 +3,7 @@
 //! files or built in code.
 //!
 //! A [`Plan`] is computed once per rule from the query Q, the target T and m_QT (found
-//! by matching one in the other, [`correspondence`]); [`execute`] then rewires each
+//! by matching one in the other, [`correspondence`]); [`execute`](fn@execute) then rewires each
 //! selected match. Every operation leaves a valid map.
 
 mod apply;

@@ -1,7 +1,7 @@
 //! The 2022 v-pattern replacement (2022 Algorithm 4, §5.1.2) as a [`Plan`]: the
 //! pattern's boundary traversal gives the labels, its interior darts are the new
 //! darts, its interior vertices the created ones. The 2022 engine finds the matching
-//! volume by signature and hands its traversal to [`execute`](super::execute), the
+//! volume by signature and hands its traversal to [`execute`](fn@super::execute), the
 //! code that rewires darts for both engines.
 
 use rustc_hash::FxHashMap;

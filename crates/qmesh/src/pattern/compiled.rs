@@ -87,7 +87,7 @@ pub fn load_patterns(path: &Path, rule: FlagRule) -> Result<PatternSet, PatternE
 /// Writes `set`, whose patterns were loaded with `rule`, to `path` (through a temporary
 /// file); returns the bytes written.
 ///
-/// The file: [`MAGIC`], [`FORMAT`] and a checksum of the rest, then the flags (one
+/// The file: the magic `qmeshps\n`, the format number (1) and a checksum of the rest, then the flags (one
 /// byte), the number of patterns, and each pattern as its length and its encoding
 /// (apart, so that they are decoded on all cores).
 ///

@@ -5,7 +5,7 @@
 //! - [`Annotator`]: Algorithm 1 and the §5.1.2 constraint table, allocation-free;
 //! - [`PrefixTree`]: many words at once (§5.2.1);
 //! - [`find_matches`]: every start dart, in parallel, one match per automorphism class;
-//! - [`select`]: greedy / best / random non-overlapping selection (§5.2.2).
+//! - [`select`](fn@select): greedy / best / random non-overlapping selection (§5.2.2).
 //!
 //! ```
 //! use qmesh::build::{BuildOptions, build_volume_map};
