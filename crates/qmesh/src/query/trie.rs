@@ -52,6 +52,9 @@ impl PrefixTree {
         let mut order: Vec<u32> = (0..words.len() as u32).collect();
         let word = |i: u32| words[i as usize];
         let mut tree = PrefixTree { max_darts, ..Default::default() };
+        // The runs hold every word's symbols at most once: reserved at once, the pages
+        // the shared prefixes leave unused are never written.
+        tree.symbols.reserve_exact(words.iter().map(|w| w.len()).sum());
         tree.nodes.push(Node::default());
         // (compressed node, its range of `order`, depth below it)
         let mut todo = vec![(0usize, 0usize, words.len(), 0usize)];
