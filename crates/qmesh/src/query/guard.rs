@@ -51,7 +51,7 @@ impl CornerGuards {
         while let Some((node, depth, labels_before)) = stack.pop() {
             path.truncate(depth);
             let labels = labels_before
-                + tree.run_of(node).iter().filter(|&&s| (NEW..FIRST_CONDITION).contains(&s)).count() as u32;
+                + tree.run_of(node, queries).iter().filter(|&&s| (NEW..FIRST_CONDITION).contains(&s)).count() as u32;
             path.push((node, labels));
             for &q in tree.terminals_of(node) {
                 for &(p, _) in &path {

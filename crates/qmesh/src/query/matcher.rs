@@ -259,7 +259,7 @@ pub(crate) fn matches_at(
     let Found { matches: out, all, volumes, .. } = found;
     let prune = (!opts.all_automorphisms).then_some(set.prune.as_slice());
     let guard = opts.min_hex_quality.map(|t| (&set.guards, t));
-    set.tree.walk(map, annot, start.raw(), opts.consumed, prune, guard, |q, a| {
+    set.tree.walk(&set.queries, map, annot, start.raw(), opts.consumed, prune, guard, |q, a| {
         let query = &set.queries[q as usize];
         if let Some(t) = opts.min_hex_quality
             && query.matched_hex_quality(map, a.matched_raw()).is_some_and(|j| j <= t)

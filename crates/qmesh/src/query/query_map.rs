@@ -35,6 +35,13 @@ pub struct Query {
     fit: OnceLock<Option<AffineFit>>,
 }
 
+/// A query reads as its word (for the prefix tree, which keeps no copy of the words).
+impl AsRef<QueryWord> for Query {
+    fn as_ref(&self) -> &QueryWord {
+        &self.word
+    }
+}
+
 /// Rebuilds a stored query's map: the map and the start dart of its labelling, from a
 /// key the query keeps (a class index for the recombination rules).
 pub(crate) type RebuildMap = fn(u32) -> (CMap3, Dart);

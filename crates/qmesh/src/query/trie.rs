@@ -8,13 +8,14 @@ use super::guard::{CornerGuards, is_alive};
 use super::word::QueryWord;
 use crate::cmap::{BitSet, CMap3};
 
-/// A node of the compressed tree: the run of symbols `symbols[run..run + len]` read
-/// on the way into it (starting at word position `depth`), its children
-/// `children[first..first + count]` (their runs start with distinct symbols), and the
-/// words it ends, `terminals[t_first..t_first + t_count]` (query indices).
+/// A node of the compressed tree: the run of symbols read on the way into it, `len`
+/// symbols of word `word` from position `depth` (every word through the node has
+/// them), its children `children[first..first + count]` (their runs start with
+/// distinct symbols), and the words it ends, `terminals[t_first..t_first + t_count]`
+/// (query indices).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 struct Node {
-    run: u32,
+    word: u32,
     len: u32,
     depth: u32,
     first: u32,
@@ -28,12 +29,13 @@ struct Node {
 const MIXED: u32 = u32::MAX;
 
 /// A prefix tree of query words, with chains of single-child nodes merged into runs so
-/// that the symbols of one word are checked in a tight loop.
+/// that the symbols of one word are checked in a tight loop. The runs are read from
+/// the words themselves (the tree keeps no copy of them): whatever reads the tree is
+/// given the words it was built from, in the same order.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct PrefixTree {
     nodes: Vec<Node>,
     children: Vec<u32>,
-    symbols: Vec<u32>,
     terminals: Vec<u32>,
     max_darts: usize,
 }
@@ -52,9 +54,6 @@ impl PrefixTree {
         let mut order: Vec<u32> = (0..words.len() as u32).collect();
         let word = |i: u32| words[i as usize];
         let mut tree = PrefixTree { max_darts, ..Default::default() };
-        // The runs hold every word's symbols at most once: reserved at once, the pages
-        // the shared prefixes leave unused are never written.
-        tree.symbols.reserve_exact(words.iter().map(|w| w.len()).sum());
         tree.nodes.push(Node::default());
         // (compressed node, its range of `order`, depth below it)
         let mut todo = vec![(0usize, 0usize, words.len(), 0usize)];
@@ -67,7 +66,7 @@ impl PrefixTree {
             tree.nodes[c].t_count = ends as u32;
             tree.terminals.extend_from_slice(&range[..ends]);
             // Groups of words by their symbol at `depth`; each starts with its
-            // smallest word index.
+            // smallest word index, whose symbols are the run of the group's node.
             groups.clear();
             let mut i = ends;
             while i < range.len() {
@@ -86,12 +85,10 @@ impl PrefixTree {
                 let end = order[a + 1..b].iter().fold(lead.len(), |end, &o| {
                     depth + lead[depth..end].iter().zip(&word(o)[depth..]).take_while(|(x, y)| x == y).count()
                 });
-                let run = tree.symbols.len() as u32;
-                tree.symbols.extend_from_slice(&lead[depth..end]);
                 let owner = if b - a == 1 { smallest } else { MIXED };
                 let id = tree.nodes.len();
                 tree.nodes.push(Node {
-                    run,
+                    word: smallest,
                     len: (end - depth) as u32,
                     depth: depth as u32,
                     owner,
@@ -114,10 +111,10 @@ impl PrefixTree {
         self.max_darts
     }
 
-    /// The symbols read on the way into `node`.
-    pub(crate) fn run_of(&self, node: usize) -> &[u32] {
+    /// The symbols read on the way into `node`, from the `words` the tree was built from.
+    pub(crate) fn run_of<'w>(&self, node: usize, words: &'w [impl AsRef<QueryWord>]) -> &'w [u32] {
         let n = self.nodes[node];
-        &self.symbols[n.run as usize..(n.run + n.len) as usize]
+        &words[n.word as usize].as_ref().ops()[n.depth as usize..(n.depth + n.len) as usize]
     }
 
     /// The queries whose words end at `node`.
@@ -131,8 +128,9 @@ impl PrefixTree {
         &self.children[n.first as usize..(n.first + n.count) as usize]
     }
 
-    /// Walks the tree and the map together from input dart `start` (raw), calling
-    /// `found(query, annotator)` at every terminal reached: the annotator then holds
+    /// Walks the tree (built from `words`) and the map together from input dart
+    /// `start` (raw), calling `found(query, annotator)` at every terminal reached: the
+    /// annotator then holds
     /// that query's match. `consumed` darts count as annotated ∅. With `prune` (one
     /// table per query), a branch owned by one query stops as soon as an automorphic
     /// image of its match starts at a smaller dart (only canonical matches are then
@@ -142,6 +140,7 @@ impl PrefixTree {
     #[allow(clippy::too_many_arguments)]
     pub(crate) fn walk(
         &self,
+        words: &[impl AsRef<QueryWord>],
         map: &CMap3,
         annot: &mut Annotator,
         start: u32,
@@ -177,7 +176,7 @@ impl PrefixTree {
                 annot.undo_to(top.2);
             }
             let c = self.nodes[child as usize];
-            let syms = &self.symbols[c.run as usize..(c.run + c.len) as usize];
+            let syms = &words[c.word as usize].as_ref().ops()[c.depth as usize..(c.depth + c.len) as usize];
             let table = match prune {
                 Some(t) if c.owner != MIXED => Some(t[c.owner as usize].as_slice()),
                 _ => None,
@@ -215,7 +214,8 @@ mod tests {
 
     /// The tree as the words sorted lexicographically give it (the first definition:
     /// a node's words are a range of the sorted list, a run ends where that range's
-    /// first and last words part), for comparison.
+    /// first and last words part; its symbols are read from the range's smallest word
+    /// index), for comparison.
     fn from_sorted(words: &[QueryWord]) -> PrefixTree {
         let ops: Vec<&[u32]> = words.iter().map(|w| w.ops()).collect();
         let mut sorted: Vec<u32> = (0..ops.len() as u32).collect();
@@ -242,13 +242,12 @@ mod tests {
                 let (x, y) = (word(a), word(b - 1));
                 let end = depth + x[depth..].iter().zip(&y[depth..]).take_while(|(p, q)| p == q).count();
                 let node = Node {
-                    run: tree.symbols.len() as u32,
+                    word: smallest,
                     len: (end - depth) as u32,
                     depth: depth as u32,
                     owner: if b - a == 1 { smallest } else { MIXED },
                     ..Default::default()
                 };
-                tree.symbols.extend_from_slice(&x[depth..end]);
                 tree.children.push(tree.nodes.len() as u32);
                 todo.push((tree.nodes.len(), a, b, end));
                 tree.nodes.push(node);
@@ -263,11 +262,11 @@ mod tests {
             let (mut node, mut at) = (0, 0);
             while at < w.ops().len() {
                 let child = tree.children_of(node).iter().map(|&c| c as usize).find(|&c| {
-                    let run = tree.run_of(c);
+                    let run = tree.run_of(c, words);
                     w.ops()[at..].starts_with(run)
                 });
                 node = child.unwrap_or_else(|| panic!("word {q} leaves the tree at symbol {at}"));
-                at += tree.run_of(node).len();
+                at += tree.run_of(node, words).len();
             }
             assert!(tree.terminals_of(node).contains(&(q as u32)), "word {q} does not end at its terminal");
         }

@@ -170,6 +170,12 @@ pub struct QueryWord {
     ops: Vec<u32>,
 }
 
+impl AsRef<QueryWord> for QueryWord {
+    fn as_ref(&self) -> &QueryWord {
+        self
+    }
+}
+
 impl QueryWord {
     /// The word of `map` under `labelling`, with `condition(d)` for each 3-free dart d.
     pub fn new(map: &CMap3, labelling: &Labelling, mut condition: impl FnMut(Dart) -> Condition) -> QueryWord {
