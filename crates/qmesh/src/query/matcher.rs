@@ -113,12 +113,13 @@ impl MatchVolumes {
         self.at.push(self.ids.len() as u32);
     }
 
-    /// Appends every match of `other`.
+    /// Gives back the capacity the lists do not use.
     fn shrink_to_fit(&mut self) {
         self.at.shrink_to_fit();
         self.ids.shrink_to_fit();
     }
 
+    /// Appends every match of `other`.
     fn append(&mut self, other: MatchVolumes) {
         if other.at.is_empty() {
             return;

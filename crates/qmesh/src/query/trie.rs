@@ -130,13 +130,12 @@ impl PrefixTree {
 
     /// Walks the tree (built from `words`) and the map together from input dart
     /// `start` (raw), calling `found(query, annotator)` at every terminal reached: the
-    /// annotator then holds
-    /// that query's match. `consumed` darts count as annotated ∅. With `prune` (one
-    /// table per query), a branch owned by one query stops as soon as an automorphic
-    /// image of its match starts at a smaller dart (only canonical matches are then
-    /// reported). With `guard` (its corner checks and a threshold), queries whose
-    /// matched corners have a Jacobian at or below the threshold are dropped as soon as
-    /// those corners are matched.
+    /// annotator then holds that query's match. `consumed` darts count as annotated ∅.
+    /// With `prune` (one table per query), a branch owned by one query stops as soon as
+    /// an automorphic image of its match starts at a smaller dart (only canonical
+    /// matches are then reported). With `guard` (its corner checks and a threshold),
+    /// queries whose matched corners have a Jacobian at or below the threshold are
+    /// dropped as soon as those corners are matched.
     #[allow(clippy::too_many_arguments)]
     pub(crate) fn walk(
         &self,
