@@ -176,6 +176,31 @@ proptest! {
         }
     }
 
+    /// Face lookups remembered per thread (by the flags around the half-face) answer
+    /// what the lookup without them does: the same pattern, the same aligned darts,
+    /// also for faces met again on the same map and on a differently flagged one.
+    #[test]
+    fn remembered_face_lookups_equal_direct_ones(
+        tets in any::<bool>(),
+        n in prop::array::uniform3(1usize..3),
+        splits in prop::collection::vec(any::<u16>(), 0..12),
+        unflag in prop::collection::vec(any::<u16>(), 0..6),
+    ) {
+        let (mut m, flag) = random_map(tets, n, &splits, &[]);
+        let darts: Vec<Dart> = m.darts().collect();
+        for &u in &unflag {
+            m.unmark(darts[u as usize % darts.len()], flag);
+        }
+        let set = &sets()[usize::from(tets)];
+        for _ in 0..2 {
+            for d in m.cells(Orbit::Face).collect::<Vec<_>>() {
+                let remembered = find_face(&m, set, Flags::Mark(flag), d, true);
+                let direct = find_face(&m, set, Flags::Mark(flag), d, false);
+                prop_assert_eq!(remembered, direct, "face of dart {}", d.raw());
+            }
+        }
+    }
+
     #[test]
     fn marching_cubes_on_random_maps(
         n in prop::array::uniform3(1usize..4),

@@ -203,3 +203,58 @@ impl CMap3 {
         Ok(darts.len())
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::build::{BuildOptions, build_volume_map};
+    use crate::cmap::{CMap3, Dart, Orbit};
+
+    /// A 2×2×2 grid of cubes and its volumes by the corner of their box nearest the origin.
+    fn grid() -> (CMap3, Vec<([i64; 3], Dart)>) {
+        let (m, _) = build_volume_map(&crate::generate::hex_grid(2, 2, 2), &BuildOptions::default()).unwrap();
+        let mut cells: Vec<([i64; 3], Dart)> = m
+            .cells(Orbit::Volume)
+            .map(|v| {
+                let lo = m
+                    .orbit(v, Orbit::Volume)
+                    .iter()
+                    .map(|&x| m.point(x))
+                    .fold([f64::MAX; 3], |a, p| [0, 1, 2].map(|k| a[k].min(p[k])));
+                (lo.map(|x| x.round() as i64), v)
+            })
+            .collect();
+        cells.sort();
+        (m, cells)
+    }
+
+    fn remove(m: &mut CMap3, cells: &[([i64; 3], Dart)], gone: impl Fn([i64; 3]) -> bool) {
+        let darts: Vec<Dart> = cells.iter().filter(|c| gone(c.0)).map(|c| c.1).collect();
+        m.remove_volumes(&darts).unwrap();
+        assert!(m.is_valid().is_empty(), "{:?}", m.is_valid());
+    }
+
+    /// Vertices joined only through removed volumes get ids of their own; the others
+    /// keep theirs (the boundary walk around them proves it without the whole orbit).
+    #[test]
+    fn vertices_joined_only_through_removed_volumes_come_apart() {
+        // One cube gone: the 26 other grid points stay single vertices.
+        let (mut m, cells) = grid();
+        remove(&mut m, &cells, |c| c == [0, 0, 0]);
+        assert_eq!(m.count_cells().vertices, 26);
+        // Two opposite cubes kept: they share the centre only, which comes apart.
+        let (mut m, cells) = grid();
+        remove(&mut m, &cells, |c| c != [0, 0, 0] && c != [1, 1, 1]);
+        assert_eq!(m.count_cells().vertices, 16);
+        assert_eq!(m.nb_vertex_ids(), 27 + 1);
+        // Two cubes along a diagonal of one layer kept: the two ends of the shared edge
+        // come apart, and each cube is a component with 8 vertices.
+        let (mut m, cells) = grid();
+        remove(&mut m, &cells, |c| c[2] == 1 || c[0] != c[1]);
+        let counts = m.count_cells();
+        assert_eq!((counts.components, counts.vertices), (2, 16));
+        // Three cubes of one layer kept, in an L: every vertex stays whole.
+        let (mut m, cells) = grid();
+        remove(&mut m, &cells, |c| c[2] == 1 || c == [1, 1, 0]);
+        assert_eq!(m.count_cells().vertices, 16);
+    }
+}

@@ -40,10 +40,13 @@ impl CMap3 {
         // ids have one orbit: the others are looked for only among the darts outside it.
         let split_off = |w: &mut OrbitWalker, group: &[(u32, u32)]| {
             let first = touched[group[0].1 as usize];
+            let mut out: Vec<(u32, Vec<Dart>)> = Vec::new();
+            if map.boundary_fan_reaches(first, group.iter().map(|g| touched[g.1 as usize])) {
+                return out;
+            }
             w.collect(map, first, Orbit::Vertex);
             let others: Vec<u32> =
                 group[1..].iter().map(|g| g.1).filter(|&at| !w.contains(touched[at as usize])).collect();
-            let mut out: Vec<(u32, Vec<Dart>)> = Vec::new();
             if others.is_empty() {
                 return out;
             }
@@ -71,6 +74,41 @@ impl CMap3 {
                 self.vertex[x.idx()] = fresh;
             }
         }
+    }
+
+    /// Whether walking around the origin of `first`, a 3-free dart, along the
+    /// boundary faces there reaches every dart of `darts` (3-free darts with the same
+    /// origin). Each step turns around an edge through the volumes still there, so what
+    /// it reaches is in the vertex orbit of `first`: a cheap proof that a vertex did not
+    /// come apart (a vertex whose boundary is not one fan, or a map with 2-free darts,
+    /// gets `false`, and the caller walks the whole orbit).
+    fn boundary_fan_reaches(&self, first: Dart, darts: impl Iterator<Item = Dart>) -> bool {
+        /// Steps after which the fan is given up (far more boundary faces than a vertex of a mesh has).
+        const MAX_STEPS: usize = 1 << 12;
+        let mut wanted: smallvec::SmallVec<[u32; 16]> = darts.map(Dart::raw).filter(|&x| x != first.raw()).collect();
+        let b = |x: u32, i: usize| self.beta_raw(x, i);
+        let start = first.raw();
+        if b(start, 3) != 0 {
+            return false;
+        }
+        let mut x = start;
+        let mut steps = 0;
+        while !wanted.is_empty() {
+            // The previous dart ends at the vertex; turn around its edge to the next face
+            // that no volume is 3-sewn to.
+            let mut t = b(b(x, 0), 2);
+            while t != 0 && b(t, 3) != 0 && steps < MAX_STEPS {
+                t = b(b(t, 3), 2);
+                steps += 1;
+            }
+            if t == 0 || t == start || steps >= MAX_STEPS {
+                return false;
+            }
+            wanted.retain(|&mut y| y != t);
+            x = t;
+            steps += 1;
+        }
+        true
     }
 
     fn not_sewable(i: usize, d1: Dart, d2: Dart, why: &'static str) -> MapError {

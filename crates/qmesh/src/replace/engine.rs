@@ -256,6 +256,9 @@ pub fn find_face(
     by_signature: bool,
 ) -> Option<(usize, Vec<Dart>)> {
     let sides = [Some(d), map.beta(d, 3)];
+    if by_signature {
+        return sides.into_iter().flatten().find_map(|side| find_face_by_memo(map, set, flags, side));
+    }
     for side in sides.into_iter().flatten() {
         let candidates: Vec<usize> = if by_signature {
             set.lookup_index(&face_signature(map, flags, side)).into_iter().collect()
@@ -269,6 +272,32 @@ pub fn find_face(
         }
     }
     None
+}
+
+/// The f-pattern of the half-face of `side` by its signature, and its darts aligned
+/// with the pattern's boundary cycle: remembered per thread by the flags around it.
+fn find_face_by_memo(map: &CMap3, set: &PatternSet, flags: Flags, side: Dart) -> Option<(usize, Vec<Dart>)> {
+    let mut darts: smallvec::SmallVec<[Dart; 16]> = smallvec::smallvec![side];
+    let mut x = map.next(side);
+    while x != side {
+        darts.push(x);
+        x = map.next(x);
+    }
+    let look_up = || {
+        let i = set.lookup_index(&face_signature(map, flags, side))?;
+        let aligned = align_face(map, flags, side, &set.patterns[i])?;
+        let s = darts.iter().position(|&x| x == aligned[0]).expect("aligned darts are the face's");
+        Some((i as u32, s as u32))
+    };
+    let found = if darts.len() <= 64 {
+        let bits = darts.iter().enumerate().fold(0u64, |b, (k, &x)| b | (u64::from(flags.get(map, x)) << k));
+        lookup_memo::face(set, (darts.len() as u32, bits), look_up)
+    } else {
+        look_up()
+    };
+    let (i, s) = found?;
+    let k = darts.len();
+    Some((i as usize, (0..k).map(|j| darts[(s as usize + j) % k]).collect()))
 }
 
 /// The v-pattern matching the volume of `d`, and the target dart corresponding to the
