@@ -21,12 +21,13 @@ use crate::signature::Flags;
 /// its whole edges (both ends at corners of the box; split ones end at a midpoint), its
 /// darts at a box corner along a box edge (the flags of the patterns, the same darts
 /// once the edges are split) and one dart of each of its half-faces (the first in the
-/// order of `darts`). Edges and faces come with the smallest dart of their orbit, which
-/// names them (edge splits add darts to orbits but never make one smaller).
+/// order of `darts`). Edges come with the dart after theirs: while it is still after
+/// it, the edge is whole (splitting an edge gives each of its darts a new next).
+/// Faces come with the smallest dart of their two sides, which names them.
 struct Cell {
     darts: Vec<Dart>,
     bbox: Aabb,
-    whole_edges: SmallVec<[(Dart, Dart); 24]>,
+    whole_edges: SmallVec<[(Dart, Dart); 12]>,
     corners: SmallVec<[Dart; 24]>,
     faces: SmallVec<[(Dart, Dart); 8]>,
 }
@@ -67,19 +68,16 @@ pub(super) fn refine(
         c.darts.iter().for_each(|&x| map.set_label_of(x, child_level));
         c.corners.iter().for_each(|&x| map.mark(x, flag));
     }
-    // Each edge and face once, by its name, in the cells' order.
+    // Each face once, by its name, in the cells' order.
     let mut named = BitSet::with_len(map.dart_capacity());
-    let edges: Vec<(Dart, [f64; 3])> = before
-        .iter()
-        .flat_map(|c| &c.whole_edges)
-        .filter(|&&(_, edge)| named.insert(edge.idx()))
-        .map(|&(x, _)| (x, midpoint(map.point(x), map.point(map.next(x)))))
-        .collect();
-    named.clear();
     let faces: Vec<Dart> =
         before.iter().flat_map(|c| &c.faces).filter(|&&(_, face)| named.insert(face.idx())).map(|&(x, _)| x).collect();
-    for (x, p) in edges {
-        map.insert_vertex_in_edge(x, p);
+    // Each edge once, in the cells' order: a cell's edge that an earlier cell split is
+    // no longer whole.
+    for &(x, after) in before.iter().flat_map(|c| &c.whole_edges) {
+        if map.next(x) == after {
+            map.insert_vertex_in_edge(x, midpoint(map.point(x), map.point(after)));
+        }
     }
     r.phases.split_edges += t.elapsed().as_secs_f64();
     let t = Instant::now();
@@ -113,9 +111,12 @@ fn read_cell(map: &CMap3, s: &mut Scratch, d: Dart) -> Cell {
     let bbox = Aabb::of(points.iter().copied());
     let (mut whole_edges, mut corners) = (SmallVec::new(), SmallVec::new());
     for (&x, &p) in darts.iter().zip(&points).filter(|&(_, &p)| is_corner(&bbox, p)) {
-        let q = map.point(map.next(x));
-        if is_corner(&bbox, q) {
-            whole_edges.push((x, edge_name(map, x)));
+        let after = map.next(x);
+        let q = map.point(after);
+        // Each whole edge has two darts in the cell (β2 of each other): the first met is
+        // kept (splitting the edge from it splits the other's).
+        if is_corner(&bbox, q) && map.beta(x, 2).is_none_or(|y| whole_edges.iter().all(|&(z, _)| z != y)) {
+            whole_edges.push((x, after));
         }
         if along_box_edge(&bbox, p, q) {
             corners.push(x);
@@ -137,32 +138,6 @@ fn read_cell(map: &CMap3, s: &mut Scratch, d: Dart) -> Cell {
     }
     darts.iter().for_each(|x| listed.remove(x.idx()));
     Cell { darts, bbox, whole_edges, corners, faces }
-}
-
-/// The smallest dart of the edge orbit of `x` (β2 and β3 alternate around an edge; on
-/// the boundary the walk stops at a 3-free dart and goes the other way from `x`).
-fn edge_name(map: &CMap3, x: Dart) -> Dart {
-    let mut name = x;
-    let mut d = x;
-    loop {
-        let a = map.beta(d, 2).expect("volume darts are 2-sewn");
-        name = name.min(a);
-        match map.beta(a, 3) {
-            Some(b) if b == x => return name,
-            Some(b) => {
-                name = name.min(b);
-                d = b;
-            }
-            None => break,
-        }
-    }
-    let mut d = x;
-    while let Some(b) = map.beta(d, 3) {
-        let a = map.beta(b, 2).expect("volume darts are 2-sewn");
-        name = name.min(b).min(a);
-        d = a;
-    }
-    name
 }
 
 /// `f` of every cell, in order, on all cores (each thread's chunk of cells shares a
