@@ -169,27 +169,38 @@ impl CMap3 {
         for &d in volumes {
             self.err_if_dead(d)?;
         }
+        // Each chunk's volumes, one after the other, with where each one ends.
         let map = &*self;
         let gather = |c: &[Dart]| {
             let mut w = OrbitWalker::new();
-            c.iter().map(|&d| w.collect(map, d, Orbit::Volume).to_vec()).collect::<Vec<_>>()
+            let (mut darts, mut ends) = (Vec::new(), Vec::with_capacity(c.len()));
+            for &d in c {
+                darts.extend_from_slice(w.collect(map, d, Orbit::Volume));
+                ends.push(darts.len());
+            }
+            (darts, ends)
         };
-        let per_volume: Vec<Vec<Dart>> = if volumes.len() < 64 {
-            gather(volumes)
+        let chunks: Vec<(Vec<Dart>, Vec<usize>)> = if volumes.len() < 64 {
+            vec![gather(volumes)]
         } else {
-            volumes.par_chunks(volumes.len().div_ceil(4 * rayon::current_num_threads())).flat_map_iter(gather).collect()
+            volumes.par_chunks(volumes.len().div_ceil(4 * rayon::current_num_threads())).map(gather).collect()
         };
         let mut gone = BitSet::with_len(self.dart_capacity());
-        let mut darts = Vec::with_capacity(per_volume.iter().map(Vec::len).sum());
-        for v in &per_volume {
-            if !gone.get(v[0].idx()) {
-                v.iter().for_each(|x| {
-                    gone.insert(x.idx());
-                });
-                darts.extend_from_slice(v);
+        let mut darts = Vec::with_capacity(chunks.iter().map(|c| c.0.len()).sum());
+        for (all, ends) in &chunks {
+            let mut start = 0;
+            for &end in ends {
+                let v = &all[start..end];
+                start = end;
+                if !gone.get(v[0].idx()) {
+                    v.iter().for_each(|x| {
+                        gone.insert(x.idx());
+                    });
+                    darts.extend_from_slice(v);
+                }
             }
         }
-        drop(per_volume);
+        drop(chunks);
         // The neighbours across become 3-free; the removed darts' own links go with them.
         let mut touched = Vec::new();
         for &x in &darts {

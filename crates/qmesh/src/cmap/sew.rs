@@ -28,7 +28,8 @@ impl CMap3 {
     /// order they are met. Ids are independent, so many are checked on all cores.
     pub(crate) fn split_vertex_ids(&mut self, touched: &[Dart]) {
         let mut by_id: Vec<(u32, u32)> = touched
-            .iter()
+            .par_iter()
+            .with_min_len(1 << 12)
             .enumerate()
             .filter(|&(_, &t)| self.is_live(t))
             .map(|(i, &t)| (self.vertex_of(t), i as u32))
