@@ -57,7 +57,29 @@ pub struct DisjointExecutor {
     new: Vec<Dart>,
 }
 
+thread_local! {
+    /// Executors handed back on this thread, with their buffers.
+    static RECYCLED: std::cell::RefCell<Vec<DisjointExecutor>> = const { std::cell::RefCell::new(Vec::new()) };
+}
+
 impl DisjointExecutor {
+    /// An executor with the buffers of the last one [`recycle`](Self::recycle)d on this
+    /// thread, if any: passes that follow one another (the levels of a subdivision)
+    /// write into memory already in use instead of fresh pages.
+    pub fn reuse() -> Self {
+        RECYCLED.with(|r| r.borrow_mut().pop()).unwrap_or_default()
+    }
+
+    /// Keeps this executor's buffers for the next [`reuse`](Self::reuse) on this thread.
+    pub fn recycle(self) {
+        RECYCLED.with(|r| {
+            let mut r = r.borrow_mut();
+            if r.len() < 2 {
+                r.push(self);
+            }
+        });
+    }
+
     /// Executes every job, as [`execute`](fn@super::execute) would one after another. The
     /// matches must be pairwise disjoint and no plan may delete darts (such jobs run
     /// one by one instead). Returns the new darts, job after job, in each plan's order.

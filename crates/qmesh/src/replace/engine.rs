@@ -162,7 +162,7 @@ pub fn replace_cells(
     if has(PatternKind::Face) {
         // Each pattern's plans are made once, when it first matches.
         let mut plans: Vec<Option<Option<FacePattern>>> = vec![None; set.patterns.len()];
-        let mut executor = DisjointExecutor::default();
+        let mut executor = DisjointExecutor::reuse();
         for chunk in faces.chunks(LOOKUP_CHUNK) {
             let t = Instant::now();
             let found = on_cores(chunk, |d| find_face(map, set, flags, d, use_signatures));
@@ -190,10 +190,11 @@ pub fn replace_cells(
             executor.execute(map, &jobs);
             r.replace_seconds += t.elapsed().as_secs_f64();
         }
+        executor.recycle();
     }
     if has(PatternKind::Volume) {
         let mut plans: Vec<Option<Option<VolumePattern>>> = vec![None; set.patterns.len()];
-        let mut executor = DisjointExecutor::default();
+        let mut executor = DisjointExecutor::reuse();
         for (c, chunk) in volumes.chunks(LOOKUP_CHUNK).enumerate() {
             let t = Instant::now();
             // The match and the traversal from its start, which the replacement follows.
@@ -235,6 +236,7 @@ pub fn replace_cells(
             }
             r.replace_seconds += t.elapsed().as_secs_f64();
         }
+        executor.recycle();
     }
     r.uncovered = coverage.into_list();
     r
