@@ -76,10 +76,11 @@ impl CMap3 {
         }
     }
 
-    /// Clears mark `m` on every dart.
+    /// Clears mark `m` on every dart (on all cores: the table is as long as the map).
     pub fn clear_mark(&mut self, m: Mark) {
+        use rayon::prelude::*;
         let keep = !m.bit();
-        self.mark_table().iter_mut().for_each(|w| *w &= keep);
+        self.mark_table().par_iter_mut().with_min_len(1 << 16).for_each(|w| *w &= keep);
     }
 
     /// All mark bits of d (bit k = mark k).
