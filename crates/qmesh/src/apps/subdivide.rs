@@ -229,6 +229,10 @@ fn subdivide_qr(
     let mut fresh: Vec<(Dart, Aabb)> = map.cells(Orbit::Volume).map(|d| (d, volume_box(&map, d, &mut w))).collect();
     r.phases.start = t.elapsed().as_secs_f64();
     for level in 1..=opts.levels + 1 {
+        if level > opts.levels {
+            // No replacement follows: the buffers the passes kept would only add to the peak.
+            crate::modify::DisjointExecutor::release_recycled();
+        }
         let t = Instant::now();
         let mut cells = fresh_cells(root, surface, &fresh);
         leaves.extend(cells.iter().map(|c| (c.cell, c.dart)));

@@ -70,6 +70,12 @@ impl DisjointExecutor {
         RECYCLED.with(|r| r.borrow_mut().pop()).unwrap_or_default()
     }
 
+    /// Frees the buffers kept on this thread (when no more passes follow, so that they do
+    /// not add to the peak memory of what comes after).
+    pub fn release_recycled() {
+        RECYCLED.with(|r| r.borrow_mut().clear());
+    }
+
     /// Keeps this executor's buffers for the next [`reuse`](Self::reuse) on this thread.
     pub fn recycle(self) {
         RECYCLED.with(|r| {
