@@ -42,6 +42,11 @@ impl BitSet {
         }
     }
 
+    /// The bits, 64 to a word (bit i is bit i % 64 of word i / 64).
+    pub(crate) fn words(&self) -> &[u64] {
+        &self.words
+    }
+
     /// Clears every bit.
     pub fn clear(&mut self) {
         self.words.iter_mut().for_each(|w| *w = 0);

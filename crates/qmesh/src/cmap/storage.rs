@@ -4,6 +4,7 @@
 //! (`beta`, `link`, `unlink`, `create_dart`, `delete_dart`, `vertex_of`, marks), so the
 //! layout can change without touching the algorithms above it (GUIDE §2).
 
+use super::bitset::BitSet;
 use super::constructors::Layout;
 use super::dart::Dart;
 use super::error::MapError;
@@ -395,6 +396,44 @@ impl CMap3 {
         }
         self.free_darts.push(d.raw());
         self.live -= 1;
+    }
+
+    /// Deletes `darts`, whose indices are exactly the bits of `gone`, as
+    /// [`delete_dart`](Self::delete_dart) of each in their order would (their slots go
+    /// to the free list in that order); the slots are cleared on all cores, a stretch of
+    /// the tables each.
+    pub(crate) fn delete_darts(&mut self, darts: &[Dart], gone: &BitSet) {
+        /// Darts per stretch: a whole number of the set's 64-bit words.
+        const STRETCH: usize = 1 << 14;
+        let words = gone.words();
+        let set_bits = |k: usize| {
+            let w = &words[(k * STRETCH / 64).min(words.len())..((k + 1) * STRETCH / 64).min(words.len())];
+            w.iter().enumerate().flat_map(|(j, &bits)| {
+                let mut rest = bits;
+                std::iter::from_fn(move || {
+                    (rest != 0).then(|| {
+                        let b = rest.trailing_zeros() as usize;
+                        rest &= rest - 1;
+                        j * 64 + b
+                    })
+                })
+            })
+        };
+        self.betas.par_chunks_mut(STRETCH).zip(self.vertex.par_chunks_mut(STRETCH)).enumerate().for_each(
+            |(k, (betas, vertex))| {
+                for i in set_bits(k) {
+                    betas[i] = [0; 4];
+                    vertex[i] = DEAD;
+                }
+            },
+        );
+        if !self.marks.is_empty() {
+            self.marks.par_chunks_mut(STRETCH).enumerate().for_each(|(k, marks)| {
+                set_bits(k).for_each(|i| marks[i] = 0);
+            });
+        }
+        self.free_darts.extend(darts.iter().map(|d| d.raw()));
+        self.live -= darts.len();
     }
 
     /// Starts keeping a volume label per dart (the uniform label, or 0, initially).
