@@ -3,6 +3,7 @@
 
 mod box_cells;
 mod conformal;
+mod contact;
 mod cube;
 mod generated_patterns;
 mod hanging;

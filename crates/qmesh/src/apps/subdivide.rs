@@ -5,9 +5,8 @@
 
 use std::time::Instant;
 
-use rayon::prelude::*;
-
 use super::box_cells::{cell_of, volume_box};
+use super::contact::{FreshCell, NearLeaves, fresh_cells};
 use super::generated_patterns::{GeneratedKind, given_or_generated};
 use super::octree::{OctCell, Octree, RootBox, coarser_neighbours, outside_among};
 use super::refine::refine;
@@ -227,6 +226,8 @@ fn subdivide_qr(
     // were refined, removed or found inside; balance refines inside cells only).
     let mut w = OrbitWalker::new();
     let mut fresh: Vec<(Dart, Aabb)> = map.cells(Orbit::Volume).map(|d| (d, volume_box(&map, d, &mut w))).collect();
+    // The leaves of the surface's hierarchy near each cell about to be refined.
+    let mut near = NearLeaves::default();
     r.phases.start = t.elapsed().as_secs_f64();
     for level in 1..=opts.levels + 1 {
         if level > opts.levels {
@@ -234,7 +235,10 @@ fn subdivide_qr(
             crate::modify::DisjointExecutor::release_recycled();
         }
         let t = Instant::now();
-        let mut cells = fresh_cells(root, surface, &fresh);
+        let next_parents = (level <= opts.levels).then(|| level - 1);
+        let (mut cells, next_near) = fresh_cells(root, surface, &fresh, &near, next_parents);
+        near = next_near;
+        leaves.reserve(cells.len());
         leaves.extend(cells.iter().map(|c| (c.cell, c.dart)));
         r.phases.contact += t.elapsed().as_secs_f64();
         if opts.remove_outside {
@@ -289,26 +293,6 @@ fn balance_closure(root: &RootBox, leaves: &FxHashMap<OctCell, Dart>, seeds: &[(
         }
     }
     queue.iter().map(|c| (i32::from(c.level), leaves[c])).collect()
-}
-
-/// A volume made by the last refinement: one dart, its octree cell, and whether the
-/// surface meets the cell's box.
-struct FreshCell {
-    dart: Dart,
-    cell: OctCell,
-    touches: bool,
-}
-
-/// Each of `volumes` (with its box) as a [`FreshCell`], on all cores.
-fn fresh_cells(root: RootBox, surface: &TriangleBvh, volumes: &[(Dart, Aabb)]) -> Vec<FreshCell> {
-    volumes
-        .par_iter()
-        .with_min_len(1 << 10)
-        .map(|&(dart, b)| {
-            let cell = cell_of(root, &b);
-            FreshCell { dart, cell, touches: surface.intersects_box(&root.cell_box(cell)) }
-        })
-        .collect()
 }
 
 /// Removes from the map, from `cells` and from `leaves` the volumes of `cells` outside

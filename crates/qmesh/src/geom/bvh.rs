@@ -184,30 +184,73 @@ impl TriangleBvh {
     /// box grown by 10⁻¹⁰ of its size so that touching counts as intersecting: a
     /// refinement decision errs toward refining).
     pub fn intersects_box(&self, b: &Aabb) -> bool {
+        self.intersects_box_near(b, None)
+    }
+
+    /// [`intersects_box`](Self::intersects_box), looking only at the leaves of `near`
+    /// when given: the leaves [`leaves_near`](Self::leaves_near) lists for a box that
+    /// contains `b` (an octree cell's parent), which hold every leaf whose triangles
+    /// the test could reach. The answer is the same.
+    pub fn intersects_box_near(&self, b: &Aabb, near: Option<&[u32]>) -> bool {
         if self.nodes.is_empty() {
             return false;
         }
-        let c = b.centre();
-        let h = b.extent().map(|e| 0.5 * e * (1.0 + 1e-10) + f64::MIN_POSITIVE);
-        let grown = Aabb { lo: [0, 1, 2].map(|k| c[k] - h[k]), hi: [0, 1, 2].map(|k| c[k] + h[k]) };
-        // (a query per octree cell: the walk's stack stays on the call stack)
-        let mut stack: SmallVec<[u32; 64]> = smallvec![0];
-        while let Some(i) = stack.pop() {
-            let n = &self.nodes[i as usize];
-            if !n.bounds.overlaps(&grown) {
-                continue;
-            }
-            if n.count == 0 {
-                stack.extend([n.left, n.left + 1]);
-                continue;
-            }
+        let (c, h, grown) = touch_box(b);
+        let leaf_touches = |n: &Node| {
             let tris = &self.triangles[n.start as usize..(n.start + n.count) as usize];
-            if tris.iter().any(|t| triangle_overlaps_box(t, c, h)) {
-                return true;
+            tris.iter().any(|t| triangle_overlaps_box(t, c, h))
+        };
+        match near {
+            Some(leaves) => {
+                leaves.iter().map(|&i| &self.nodes[i as usize]).any(|n| n.bounds.overlaps(&grown) && leaf_touches(n))
             }
+            None => self.leaves_meeting(&grown).any(|i| leaf_touches(&self.nodes[i as usize])),
         }
-        false
     }
+
+    /// Appends to `out` the leaves (node indices) whose bounds meet `b` grown by 10⁻⁶ of
+    /// its size (and by a few rounding units of its coordinates): every leaf that
+    /// [`intersects_box`](Self::intersects_box) of a box inside `b` looks at. Looked for
+    /// among `near` when given (the leaves near a box containing `b`).
+    pub fn leaves_near(&self, b: &Aabb, near: Option<&[u32]>, out: &mut Vec<u32>) {
+        let e = b.extent();
+        let pad = |k: usize| 1e-6 * e[k] + 16.0 * f64::EPSILON * b.lo[k].abs().max(b.hi[k].abs()) + f64::MIN_POSITIVE;
+        let wide = Aabb { lo: [0, 1, 2].map(|k| b.lo[k] - pad(k)), hi: [0, 1, 2].map(|k| b.hi[k] + pad(k)) };
+        match near {
+            Some(leaves) => {
+                out.extend(leaves.iter().copied().filter(|&i| self.nodes[i as usize].bounds.overlaps(&wide)))
+            }
+            None if self.nodes.is_empty() => {}
+            None => out.extend(self.leaves_meeting(&wide)),
+        }
+    }
+
+    /// The leaves whose bounds meet `b`, found from the root (a query per octree cell:
+    /// the walk's stack stays on the call stack).
+    fn leaves_meeting<'a>(&'a self, b: &'a Aabb) -> impl Iterator<Item = u32> + 'a {
+        let mut stack: SmallVec<[u32; 64]> = smallvec![0];
+        std::iter::from_fn(move || {
+            while let Some(i) = stack.pop() {
+                let n = &self.nodes[i as usize];
+                if !n.bounds.overlaps(b) {
+                    continue;
+                }
+                if n.count > 0 {
+                    return Some(i);
+                }
+                stack.extend([n.left, n.left + 1]);
+            }
+            None
+        })
+    }
+}
+
+/// The centre, half sizes and box of the contact test of `b`: grown by 10⁻¹⁰ of its
+/// size, so that touching counts as intersecting.
+fn touch_box(b: &Aabb) -> ([f64; 3], [f64; 3], Aabb) {
+    let c = b.centre();
+    let h = b.extent().map(|e| 0.5 * e * (1.0 + 1e-10) + f64::MIN_POSITIVE);
+    (c, h, Aabb { lo: [0, 1, 2].map(|k| c[k] - h[k]), hi: [0, 1, 2].map(|k| c[k] + h[k]) })
 }
 
 fn tri_centroid(t: &[[f64; 3]; 3]) -> [f64; 3] {
@@ -277,5 +320,65 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// Octants and their octants tested among the leaves kept near their parent give
+    /// the answers of the walk from the root, including for a triangle just outside
+    /// the parent that only the children's grown test boxes reach.
+    #[test]
+    fn tests_near_a_parent_answer_as_from_the_root() {
+        let mut tris: Vec<[[f64; 3]; 3]> = (0..300)
+            .map(|i| {
+                let a = i as f64 * 0.07;
+                let p = [2.0 + 1.5 * a.cos(), 2.0 + 1.5 * a.sin(), 0.2 + a * 0.08];
+                [p, [p[0] + 0.2, p[1], p[2]], [p[0], p[1] + 0.03, p[2] + 0.2]]
+            })
+            .collect();
+        // In the plane x = 4 + 10⁻¹¹: outside the root box [0, 4]³, inside the grown
+        // test boxes of the cells on its x = 4 side.
+        let x = 4.0 + 1e-11;
+        let beyond: Vec<[[f64; 3]; 3]> = (0..4)
+            .map(|i| {
+                let z = 3.6 + 0.05 * i as f64;
+                [[x, 1.0, z], [x, 1.2, z], [x, 1.0, z + 0.04]]
+            })
+            .collect();
+        tris.extend(&beyond);
+        let bvh = TriangleBvh::new(tris);
+        let octants = |b: &Aabb| -> Vec<Aabb> {
+            let c = b.centre();
+            (0..8)
+                .map(|o| {
+                    let high = |k: usize| o >> k & 1 == 1;
+                    Aabb {
+                        lo: [0, 1, 2].map(|k| if high(k) { c[k] } else { b.lo[k] }),
+                        hi: [0, 1, 2].map(|k| if high(k) { b.hi[k] } else { c[k] }),
+                    }
+                })
+                .collect()
+        };
+        let root = Aabb { lo: [0.0; 3], hi: [4.0; 3] };
+        let (mut near_root, mut hits) = (Vec::new(), 0);
+        bvh.leaves_near(&root, None, &mut near_root);
+        for child in octants(&root) {
+            let mut near_child = Vec::new();
+            bvh.leaves_near(&child, Some(&near_root), &mut near_child);
+            for grandchild in octants(&child) {
+                let from_root = bvh.intersects_box(&grandchild);
+                assert_eq!(bvh.intersects_box_near(&grandchild, Some(&near_child)), from_root, "{grandchild:?}");
+                hits += usize::from(from_root);
+            }
+            assert_eq!(bvh.intersects_box_near(&child, Some(&near_root)), bvh.intersects_box(&child));
+        }
+        assert!(hits > 4, "the helix crosses several cells ({hits})");
+        // Those triangles alone: the leaves meeting the root box itself miss them, the
+        // leaves near it (with the pad) do not.
+        let bvh = TriangleBvh::new(beyond);
+        let side = Aabb { lo: [2.0, 0.0, 2.0], hi: [4.0, 2.0, 4.0] };
+        assert!(bvh.intersects_box(&side));
+        assert_eq!(bvh.leaves_meeting(&root).count(), 0);
+        let mut near = Vec::new();
+        bvh.leaves_near(&root, None, &mut near);
+        assert!(bvh.intersects_box_near(&side, Some(&near)));
     }
 }

@@ -1,0 +1,89 @@
+//! Which of the cells a refinement made the surface touches (2022 §7.1: the cells to
+//! split at the next level). A touched cell keeps the leaves of the surface's hierarchy
+//! near it, and its children look only at those instead of walking the hierarchy from
+//! its root: the same answers, with a fraction of the box tests.
+
+use rayon::prelude::*;
+use rustc_hash::FxHashMap;
+
+use super::box_cells::cell_of;
+use super::octree::{OctCell, RootBox};
+use crate::cmap::Dart;
+use crate::geom::{Aabb, TriangleBvh};
+
+/// A volume made by the last refinement: one dart, its octree cell, and whether the
+/// surface meets the cell's box.
+pub(super) struct FreshCell {
+    pub dart: Dart,
+    pub cell: OctCell,
+    pub touches: bool,
+}
+
+/// The hierarchy's leaves near each cell that will be refined next
+/// ([`TriangleBvh::leaves_near`]), one list after the other.
+#[derive(Default)]
+pub(super) struct NearLeaves {
+    lists: FxHashMap<OctCell, (u32, u32)>,
+    leaves: Vec<u32>,
+}
+
+impl NearLeaves {
+    /// The leaves near the parent of `c`, if it kept them.
+    fn of_parent(&self, c: OctCell) -> Option<&[u32]> {
+        let parent = c.ancestor(c.level.checked_sub(1)?);
+        self.lists.get(&parent).map(|&(start, len)| &self.leaves[start as usize..(start + len) as usize])
+    }
+}
+
+/// What one core found for its run of volumes: the cells, the touched cells that keep
+/// leaves (with how many) and those leaves, one list after the other.
+struct Run {
+    cells: Vec<FreshCell>,
+    kept: Vec<(OctCell, u32)>,
+    leaves: Vec<u32>,
+}
+
+/// Each of `volumes` (with its box) as a [`FreshCell`], on all cores, testing the
+/// surface only near each cell's parent (`near`); with the leaves near the touched
+/// cells of level `next_parents`, which the next refinement splits (`None` after the
+/// last one).
+pub(super) fn fresh_cells(
+    root: RootBox,
+    surface: &TriangleBvh,
+    volumes: &[(Dart, Aabb)],
+    near: &NearLeaves,
+    next_parents: Option<u8>,
+) -> (Vec<FreshCell>, NearLeaves) {
+    let chunk = volumes.len().div_ceil(4 * rayon::current_num_threads()).max(1 << 10);
+    let runs: Vec<Run> = volumes
+        .par_chunks(chunk)
+        .map(|run| {
+            let (mut cells, mut kept, mut leaves) = (Vec::with_capacity(run.len()), Vec::new(), Vec::new());
+            for &(dart, b) in run {
+                let cell = cell_of(root, &b);
+                let (cell_box, parent_near) = (root.cell_box(cell), near.of_parent(cell));
+                let touches = surface.intersects_box_near(&cell_box, parent_near);
+                if touches && next_parents == Some(cell.level) {
+                    let before = leaves.len();
+                    surface.leaves_near(&cell_box, parent_near, &mut leaves);
+                    kept.push((cell, (leaves.len() - before) as u32));
+                }
+                cells.push(FreshCell { dart, cell, touches });
+            }
+            Run { cells, kept, leaves }
+        })
+        .collect();
+    let mut next = NearLeaves::default();
+    next.lists.reserve(runs.iter().map(|r| r.kept.len()).sum());
+    let mut cells = Vec::with_capacity(volumes.len());
+    for Run { cells: run_cells, kept, leaves } in runs {
+        let mut start = next.leaves.len() as u32;
+        for (c, len) in kept {
+            next.lists.insert(c, (start, len));
+            start += len;
+        }
+        next.leaves.extend(leaves);
+        cells.extend(run_cells);
+    }
+    (cells, next)
+}
