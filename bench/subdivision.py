@@ -4,11 +4,14 @@ hand-written boxes plus building the same map, on 1 and 2 threads, round-robin
 (bench/measure.py).
 
 For each surface and level: `qmesh subdivide --remove-outside` by query-replace on 2
-threads and on 1 (RAYON_NUM_THREADS=1), `--direct` boxes, and `qmesh info` on the direct
-output (its build time is building the same map from the boxes). Step times are the
-commands' own (`seconds`, `build_seconds`); wall times and peak memory are the
-processes'. Prints a Markdown table: volumes, #fqr, #vqr, the times, qr / (direct + map)
-and the speed-up of 2 threads over 1.
+threads and on 1 (RAYON_NUM_THREADS=1), `--direct` boxes, `qmesh info` on the direct
+output (its build time: the map of the boxes as plain hexahedra) and `qmesh conformal`
+on it (its `hanging` + `build` phases: the map of the boxes with the hanging vertices
+inserted into the coarse faces, every face sewn, which is the map the query-replace
+subdivision makes). Step times are the commands' own (`seconds`, `build_seconds`,
+`phases`); wall times and peak memory are the processes'. Prints a Markdown table:
+volumes, #fqr, #vqr, the times, qr / (direct + map) for both maps and the speed-up of 2
+threads over 1.
 
 usage: bench/subdivision.py [--runs N] [--levels 6,7,8] [--out DIR] [SURFACE...]"""
 import argparse
@@ -30,8 +33,9 @@ def main():
     os.makedirs(a.out, exist_ok=True)
     sh("cargo", "build", "--release", "-q", "--manifest-path", os.path.join(ROOT, "Cargo.toml"))
     print("| surface | level | volumes | #fqr | #vqr | qr s (2 threads) | qr s (1 thread) | speed-up "
-          "| direct s | map build s | direct + map s | qr / (direct + map) | qr wall s | qr MB |")
-    print("|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|")
+          "| direct s | map build s | direct + map s | qr / (direct + map) "
+          "| same-map build s | qr / (direct + same map) | qr wall s | qr MB |")
+    print("|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|")
     for name in a.surfaces or SURFACES:
         src = name if os.path.isabs(name) else os.path.join(DATA, "surface", name)
         stem = os.path.splitext(os.path.basename(src))[0]
@@ -44,18 +48,22 @@ def main():
                 "qr", "--", *base, "-o", qr, "---",
                 "qr1", "--", "env", "RAYON_NUM_THREADS=1", *base, "-o", qr + "1.vtk", "---",
                 "direct", "--", *base, "--direct", "-o", direct + "2.vtk", "---",
-                "map", "--", Q, "info", direct, "--json",
+                "map", "--", Q, "info", direct, "--json", "---",
+                "same", "--", Q, "conformal", direct, "--json", "--force", "-o", direct + "c.vtk",
             )
-            q2, q1, d, m = [json.loads(line) for line in res.splitlines() if line.strip()]
+            q2, q1, d, m, c = [json.loads(line) for line in res.splitlines() if line.strip()]
             o = q2["output"]
             if o["volumes"] != d["output"]["volumes"] or o["volumes"] != q1["output"]["volumes"]:
                 sys.exit(f"{stem} L{level}: the runs disagree on the volumes")
             dm = d["output"]["seconds"] + m["output"]["build_seconds"]
+            same = c["output"]["phases"]["hanging"] + c["output"]["phases"]["build"]
+            ds = d["output"]["seconds"] + same
             print(f"| {stem} | {level} | {o['volumes']:,} | {o['faces_replaced']:,} | {o['volumes_replaced']:,} "
                   f"| {o['seconds']:.3f} | {q1['output']['seconds']:.3f} "
                   f"| {q1['output']['seconds'] / o['seconds']:.2f} "
                   f"| {d['output']['seconds']:.3f} | {m['output']['build_seconds']:.3f} | {dm:.3f} "
-                  f"| {o['seconds'] / dm:.2f} | {q2['seconds']:.2f} | {q2['peak_rss_bytes'] / 1e6:.0f} |", flush=True)
+                  f"| {o['seconds'] / dm:.2f} | {same:.3f} | {o['seconds'] / ds:.2f} "
+                  f"| {q2['seconds']:.2f} | {q2['peak_rss_bytes'] / 1e6:.0f} |", flush=True)
 
 
 main()
