@@ -179,3 +179,23 @@ fn same_map_on_one_thread_and_on_four() {
     assert_eq!(a.nb_darts(), b.nb_darts());
     assert!(a.darts().all(|d| (0..=3).all(|i| a.beta(d, i) == b.beta(d, i))), "dart for dart");
 }
+
+/// The map the query-replace subdivision makes is the map of its boxes with their
+/// hanging vertices inserted into the coarse faces (what `conformal` builds from a
+/// written octree): the same darts, cells and boundary, which makes that build the
+/// "direct + the same map" baseline of `bench/subdivision.py`.
+#[test]
+fn query_replace_map_is_the_boxes_map_with_hanging_vertices() {
+    let Some(dir) = common::data_dir() else { return };
+    let s = read_surface(&dir.join("surface/bunny.off"), None).expect("bunny");
+    let bvh = TriangleBvh::from_polygons(&s.points, (0..s.nb_polygons()).map(|i| s.polygon(i)));
+    let opts = SubdivideOptions { levels: 5, remove_outside: true, ..Default::default() };
+    let qr = subdivide(&bvh, &opts, None, &|_| {}).expect("subdivide");
+    let map = qr.map.as_ref().expect("a map");
+    let (with_hanging, report) = qmesh::apps::insert_hanging_vertices(&qr.mesh).expect("a 2:1 octree");
+    assert!(report.cells_with_hanging > 100, "{report:?}");
+    let (built, _) = qmesh::build::build_map(with_hanging, &qmesh::build::BuildOptions::default()).expect("builds");
+    assert_eq!(built.nb_darts(), map.nb_darts());
+    assert_eq!(built.count_cells(), map.count_cells());
+    assert_eq!(built.boundary_faces(), map.boundary_faces());
+}
