@@ -125,6 +125,12 @@ pub(crate) fn coarser_neighbours(
             return None;
         }
         let same = OctCell { level: cell.level, ijk: p.map(|x| x as u32) };
+        // Leaves do not overlap: when the neighbour at the same level is one, none of
+        // its ancestors is (most positions, in a balanced octree: one lookup, not one
+        // per level).
+        if is_leaf(&same) {
+            return None;
+        }
         (0..below).rev().map(|l| same.ancestor(l)).find(|c| is_leaf(c))
     })
 }
