@@ -42,9 +42,21 @@ impl BitSet {
         }
     }
 
-    /// The bits, 64 to a word (bit i is bit i % 64 of word i / 64).
-    pub(crate) fn words(&self) -> &[u64] {
-        &self.words
+    /// The set indices in `from..to` (both multiples of 64), in increasing order, as
+    /// offsets from `from`.
+    pub(crate) fn ones_in(&self, from: usize, to: usize) -> impl Iterator<Item = usize> + '_ {
+        debug_assert!(from.is_multiple_of(64) && to.is_multiple_of(64), "whole words only");
+        let n = self.words.len();
+        self.words[(from / 64).min(n)..(to / 64).min(n)].iter().enumerate().flat_map(|(j, &bits)| {
+            let mut rest = bits;
+            std::iter::from_fn(move || {
+                (rest != 0).then(|| {
+                    let b = rest.trailing_zeros() as usize;
+                    rest &= rest - 1;
+                    j * 64 + b
+                })
+            })
+        })
     }
 
     /// Clears every bit.

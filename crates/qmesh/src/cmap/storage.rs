@@ -405,20 +405,7 @@ impl CMap3 {
     pub(crate) fn delete_darts(&mut self, darts: &[Dart], gone: &BitSet) {
         /// Darts per stretch: a whole number of the set's 64-bit words.
         const STRETCH: usize = 1 << 14;
-        let words = gone.words();
-        let set_bits = |k: usize| {
-            let w = &words[(k * STRETCH / 64).min(words.len())..((k + 1) * STRETCH / 64).min(words.len())];
-            w.iter().enumerate().flat_map(|(j, &bits)| {
-                let mut rest = bits;
-                std::iter::from_fn(move || {
-                    (rest != 0).then(|| {
-                        let b = rest.trailing_zeros() as usize;
-                        rest &= rest - 1;
-                        j * 64 + b
-                    })
-                })
-            })
-        };
+        let set_bits = |k: usize| gone.ones_in(k * STRETCH, (k + 1) * STRETCH);
         self.betas.par_chunks_mut(STRETCH).zip(self.vertex.par_chunks_mut(STRETCH)).enumerate().for_each(
             |(k, (betas, vertex))| {
                 for i in set_bits(k) {
