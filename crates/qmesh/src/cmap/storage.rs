@@ -232,13 +232,13 @@ impl CMap3 {
     }
 
     /// Sets βi of raw dart `d` to raw dart `to` alone (no reverse link: for code that
-    /// stores both directions itself, as a batch of resolved links does).
+    /// stores both directions itself).
     #[inline]
     pub(crate) fn set_beta_raw(&mut self, d: u32, i: usize, to: u32) {
         self.betas[d as usize][i] = to;
     }
 
-    /// Takes `n` dart slots for [`store_dart`](Self::store_dart), appended to `out`: the
+    /// Takes `n` dart slots for [`SharedDarts::store_dart`](super::SharedDarts::store_dart), appended to `out`: the
     /// slots `n` calls of [`create_dart`](Self::create_dart) would take, in the same
     /// order (freed slots first, the last freed first). Every slot must be stored before
     /// the map is read again.
@@ -259,21 +259,6 @@ impl CMap3 {
             extend_on_cores(l, 0, fresh);
         }
         out.extend((first..first + fresh).map(|i| Dart::from_raw(i as u32).expect("index 0 is never reserved")));
-    }
-
-    /// Stores a dart reserved by [`reserve_darts`](Self::reserve_darts): every beta
-    /// (raw), its vertex id and label, no mark.
-    #[inline]
-    pub(crate) fn store_dart(&mut self, d: Dart, betas: [u32; 4], v: u32, label: i32) {
-        let k = d.idx();
-        self.betas[k] = betas;
-        self.vertex[k] = v;
-        if let Some(m) = self.marks.get_mut(k) {
-            *m = 0;
-        }
-        if let Some(l) = &mut self.labels {
-            l[k] = label;
-        }
     }
 
     /// Low-level unlink, no checks: frees βi(d) and the reverse pointer of its partner.

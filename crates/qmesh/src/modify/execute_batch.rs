@@ -1,14 +1,14 @@
 //! Executing plans on many matches that share no dart (the faces or the volumes of one
-//! query-replace pass, 2022 §5.1): each match is resolved on any core into plain
-//! stores (positions, vertex ids, labels, betas), which one thread then makes in the
-//! matches' order. Darts and vertices are allocated as [`execute`](fn@super::execute)
-//! allocates them, match after match, so the map is the same, dart for dart, as
-//! executing the matches one by one, whatever the number of threads.
+//! query-replace pass, 2022 §5.1), on all cores. Darts and vertices are allocated
+//! first, as [`execute`](fn@super::execute) allocates them match after match; then each
+//! match writes its new darts and its matched darts' links, which no other match reads
+//! or writes ([`SharedDarts`]). The map is the same, dart for dart, as executing the
+//! matches one by one, whatever the number of threads.
 
 use rayon::prelude::*;
 
 use super::plan::{Link, Plan, VertexOf};
-use crate::cmap::{CMap3, Dart};
+use crate::cmap::{CMap3, Dart, SharedDarts};
 
 /// A plan and the match it runs on (query label k at `matched[k - 1]`).
 #[derive(Debug)]
@@ -17,43 +17,10 @@ pub struct Job<'a> {
     pub matched: Vec<Dart>,
 }
 
-/// A link end: a new dart of the job (by index) or a dart of the map.
-#[derive(Clone, Copy)]
-enum End {
-    New(u32),
-    Old(Dart),
-}
-
-/// One beta store into a dart of the map: β`slot` of raw dart `at` becomes raw `to`.
-#[derive(Clone, Copy, Debug, Default)]
-struct Store {
-    at: u32,
-    slot: u8,
-    to: u32,
-}
-
-/// A new dart as stored: betas (raw), vertex id, label.
-#[derive(Clone, Copy, Debug, Default)]
-struct NewRecord {
-    betas: [u32; 4],
-    vertex: u32,
-    label: i32,
-}
-
-/// What one job writes, resolved before anything is written.
-struct Resolved<'a> {
-    positions: &'a mut [[f64; 3]],
-    darts: &'a mut [NewRecord],
-    stores: &'a mut [Store],
-}
-
-/// Runs batches of jobs with [`execute`](Self::execute), keeping its buffers from one
-/// batch to the next (a batch of a few thousand volumes resolves into megabytes).
+/// Runs batches of jobs with [`execute`](Self::execute), keeping its list of new darts
+/// from one batch to the next (a batch of a few thousand volumes makes megabytes).
 #[derive(Debug, Default)]
 pub struct DisjointExecutor {
-    positions: Vec<[f64; 3]>,
-    darts: Vec<NewRecord>,
-    stores: Vec<Store>,
     new: Vec<Dart>,
 }
 
@@ -110,44 +77,21 @@ impl DisjointExecutor {
         if sizes.iter().any(|s| s.labels) {
             map.enable_labels();
         }
-        let counts = |f: fn(&Sizes) -> usize| sizes.iter().map(f).collect::<Vec<_>>();
-        let (vertex_counts, dart_counts, store_counts) =
-            (counts(|s| s.vertices), counts(|s| s.darts), counts(|s| s.stores));
+        let (vertex_counts, dart_counts): (Vec<usize>, Vec<usize>) =
+            sizes.iter().map(|s| (s.vertices, s.darts)).unzip();
         let first_vertex = map.nb_vertex_ids() as u32;
         map.reserve_darts(dart_counts.iter().sum(), &mut self.new);
-        refill(&mut self.positions, vertex_counts.iter().sum());
-        refill(&mut self.darts, self.new.len());
-        refill(&mut self.stores, store_counts.iter().sum());
-        let parts: Vec<Resolved> = split(&mut self.positions, &vertex_counts)
-            .into_iter()
-            .zip(split(&mut self.darts, &dart_counts))
-            .zip(split(&mut self.stores, &store_counts))
-            .map(|((positions, darts), stores)| Resolved { positions, darts, stores })
-            .collect();
+        let (shared, positions, created) = map.shared_darts(vertex_counts.iter().sum());
         let starts = |c: &[usize]| c.iter().scan(0, |s, &n| Some(std::mem::replace(s, *s + n))).collect::<Vec<_>>();
         let (vertex_starts, dart_starts) = (starts(&vertex_counts), starts(&dart_counts));
-        let (shared, new): (&CMap3, &[Dart]) = (map, &self.new);
-        parts.into_par_iter().enumerate().with_min_len(64).for_each(|(k, out)| {
+        let new = &self.new;
+        split(created, &vertex_counts).into_par_iter().enumerate().with_min_len(64).for_each(|(k, created)| {
             let mine = &new[dart_starts[k]..dart_starts[k] + dart_counts[k]];
-            resolve(shared, &jobs[k], mine, first_vertex + vertex_starts[k] as u32, out);
+            let first = first_vertex + vertex_starts[k] as u32;
+            write(&shared, positions, &jobs[k], mine, (first, created));
         });
-        for &p in &self.positions {
-            map.add_vertex(p);
-        }
-        for (&d, r) in self.new.iter().zip(&self.darts) {
-            map.store_dart(d, r.betas, r.vertex, r.label);
-        }
-        for s in &self.stores {
-            map.set_beta_raw(s.at, usize::from(s.slot), s.to);
-        }
         &self.new
     }
-}
-
-/// `v` holding `n` default values, keeping its allocation.
-fn refill<T: Default + Clone>(v: &mut Vec<T>, n: usize) {
-    v.clear();
-    v.resize(n, T::default());
 }
 
 /// The slot of the reverse link of a βi link: plans link through β1 (whose inverse is
@@ -162,77 +106,61 @@ fn back_slot(i: usize) -> usize {
 struct Sizes {
     vertices: usize,
     darts: usize,
-    /// Stores into darts of the map: the link ends that are matched darts (a link
-    /// between two new darts stays among the new darts' records).
-    stores: usize,
     /// Whether the target gives a volume a label of its own.
     labels: bool,
 }
 
 impl Sizes {
     fn of(plan: &Plan) -> Sizes {
-        let matched = |l: &Link| matches!(l, Link::Matched(_));
-        let to_matched = plan.new_darts.iter().flat_map(|n| n.links).filter(matched).count();
-        let relinked = plan.relink.iter().map(|(_, _, l)| 1 + usize::from(matched(l))).sum::<usize>();
         Sizes {
             vertices: plan.created.len(),
             darts: plan.new_darts.len(),
-            stores: to_matched + relinked,
             labels: plan.new_darts.iter().any(|n| n.label != 0),
         }
     }
 }
 
-/// Resolves `job`, whose new darts are `new` and first created vertex `first_vertex`:
-/// the stores of [`execute`](fn@super::execute)'s links, in its order, into the new
-/// darts' records or into `out.stores`.
-fn resolve(map: &CMap3, job: &Job, new: &[Dart], first_vertex: u32, out: Resolved) {
+/// Writes what [`execute`](fn@super::execute) makes of `job`, whose new darts are `new`
+/// (reserved) and created vertices `created` (their first id, their positions to
+/// write): the created positions from `positions` (the vertices before the batch), the
+/// new darts, then every link in `execute`'s order. A job writes only its new darts and
+/// its matched darts' links, and reads only what no other job of the batch writes.
+fn write(map: &SharedDarts, positions: &[[f64; 3]], job: &Job, new: &[Dart], created: (u32, &mut [[f64; 3]])) {
     let plan = job.plan;
     let at = |l: u32| job.matched[l as usize - 1];
-    for (w, p) in plan.created.iter().zip(out.positions.iter_mut()) {
+    let (first_vertex, created) = created;
+    for (w, p) in plan.created.iter().zip(created.iter_mut()) {
         for &(l, x) in w {
-            let q = map.point(at(l));
+            let q = positions[map.vertex_of(at(l)) as usize];
             (0..3).for_each(|k| p[k] += x * q[k]);
         }
     }
-    for (n, d) in plan.new_darts.iter().zip(out.darts.iter_mut()) {
-        d.vertex = match n.vertex {
+    for (n, &d) in plan.new_darts.iter().zip(new) {
+        let vertex = match n.vertex {
             VertexOf::Matched(l) => map.vertex_of(at(l)),
             VertexOf::Created(i) => first_vertex + i,
         };
-        d.label = if n.label != 0 { n.label } else { map.label_of(at(n.label_from)) };
+        let label = if n.label != 0 { n.label } else { map.label_of(at(n.label_from)) };
+        map.store_dart(d, [0; 4], vertex, label);
     }
     let end = |l: Link| match l {
         Link::Free => None,
-        Link::New(i) => Some(End::New(i)),
-        Link::Matched(k) => Some(End::Old(at(k))),
+        Link::New(i) => Some(new[i as usize]),
+        Link::Matched(k) => Some(at(k)),
     };
-    let raw = |e: End| match e {
-        End::New(i) => new[i as usize].raw(),
-        End::Old(d) => d.raw(),
+    let link = |a: Dart, i: usize, b: Dart| {
+        map.set_beta(a.raw(), i, b.raw());
+        map.set_beta(b.raw(), back_slot(i), a.raw());
     };
-    let (darts, stores) = (out.darts, out.stores);
-    let mut next_store = 0;
-    let mut store = |e: End, slot: usize, to: u32| match e {
-        End::New(i) => darts[i as usize].betas[slot] = to,
-        End::Old(d) => {
-            stores[next_store] = Store { at: d.raw(), slot: slot as u8, to };
-            next_store += 1;
-        }
-    };
-    let mut link = |a: End, i: usize, b: End| {
-        store(a, i, raw(b));
-        store(b, back_slot(i), raw(a));
-    };
-    for (j, n) in plan.new_darts.iter().enumerate() {
+    for (n, &d) in plan.new_darts.iter().zip(new) {
         for (i, &l) in n.links.iter().enumerate() {
             if let Some(o) = end(l) {
-                link(End::New(j as u32), i + 1, o);
+                link(d, i + 1, o);
             }
         }
     }
     for &(k, i, l) in &plan.relink {
-        link(End::Old(at(k)), i, end(l).expect("relinked darts are never left free"));
+        link(at(k), i, end(l).expect("relinked darts are never left free"));
     }
 }
 

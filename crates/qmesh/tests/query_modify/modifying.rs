@@ -387,6 +387,38 @@ fn batched_deletions_equal_one_by_one() {
     }
 }
 
+/// The batch executor writes the matches on all cores (each its own darts): the same
+/// map, dart for dart and vertex for vertex, as `execute` match after match, here with
+/// 216 cubes each replaced by 6 pyramids around a created vertex on two threads.
+#[test]
+fn batched_replacements_on_two_threads_equal_one_by_one() {
+    use qmesh::modify::{DisjointExecutor, Job, execute};
+    use qmesh::query::{Strategy, select};
+    let mut q = Query::new("cube", grid(1, 1, 1), |_| Condition::Any).unwrap();
+    let plan = Plan::new(Operation::Replace, &mut q, &six_pyramids()).unwrap();
+    let set = QuerySet::new(vec![q]);
+    let mut batched = grid(6, 6, 6);
+    let found = find_matches(&batched, &set, &MatchOptions::default());
+    let chosen = select(&batched, &set, &found.matches, Strategy::Greedy, None);
+    assert_eq!(chosen.len(), 216);
+    let mut one_by_one = batched.clone();
+    let jobs: Vec<Job> = chosen.iter().map(|s| Job { plan: &plan, matched: s.darts.clone() }).collect();
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(2).build().unwrap();
+    pool.install(|| DisjointExecutor::default().execute(&mut batched, &jobs).len());
+    for s in &chosen {
+        execute(&mut one_by_one, &plan, &s.darts);
+    }
+    assert!(batched.is_valid().is_empty());
+    assert_eq!(batched.count_cells().volumes, 6 * 216);
+    assert_eq!(batched.dart_capacity(), one_by_one.dart_capacity());
+    assert_eq!(batched.nb_vertex_ids(), one_by_one.nb_vertex_ids());
+    for raw in 1..batched.dart_capacity() as u32 {
+        let d = qmesh::cmap::Dart::from_raw(raw).unwrap();
+        let slot = |m: &CMap3| m.is_live(d).then(|| (m.betas_raw(raw), m.vertex_of(d), m.point(d), m.label_of(d)));
+        assert_eq!(slot(&batched), slot(&one_by_one), "dart {raw}");
+    }
+}
+
 /// The operations' names read back (rule files name them), and each plan's size per
 /// match: extending a cube into a pair adds one cube (24 darts), deleting one of a pair
 /// removes one.
