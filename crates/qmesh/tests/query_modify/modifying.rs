@@ -358,49 +358,19 @@ fn a_target_label_marks_the_added_volumes() {
     assert_eq!(sorted_volume_labels(&m), [0, 0, 0, 5, 5, 5]);
 }
 
-/// The batch executor takes plans that delete darts one match at a time (its batched
-/// path only adds): the same map, dart for dart, as `execute` match after match.
-#[test]
-fn batched_deletions_equal_one_by_one() {
+/// `input` with every match of the one-volume-or-more `query` the greedy selection takes
+/// rewritten by `op` into `target`, through the batch executor on two threads and by
+/// `execute` match after match; checks that both maps are the same, dart for dart and
+/// vertex for vertex, and returns the batched map and the number of matches.
+fn batched_equals_one_by_one(op: Operation, query: CMap3, target: &CMap3, input: CMap3) -> (CMap3, usize) {
     use qmesh::modify::{DisjointExecutor, Job, execute};
     use qmesh::query::{Strategy, select};
-    let mut q = Query::new("pair", grid(2, 1, 1), |_| Condition::Any).unwrap();
-    let plan = Plan::new(Operation::Delete, &mut q, &grid(1, 1, 1)).unwrap();
+    let mut q = Query::new("q", query, |_| Condition::Any).unwrap();
+    let plan = Plan::new(op, &mut q, target).unwrap();
     let set = QuerySet::new(vec![q]);
-    let mut batched = grid(4, 1, 1);
+    let mut batched = input;
     let found = find_matches(&batched, &set, &MatchOptions::default());
     let chosen = select(&batched, &set, &found.matches, Strategy::Greedy, None);
-    assert_eq!(chosen.len(), 2);
-    let mut one_by_one = batched.clone();
-    let jobs: Vec<Job> = chosen.iter().map(|s| Job { plan: &plan, matched: s.darts.clone() }).collect();
-    DisjointExecutor::default().execute(&mut batched, &jobs);
-    for s in &chosen {
-        execute(&mut one_by_one, &plan, &s.darts);
-    }
-    assert!(batched.is_valid().is_empty());
-    assert_eq!(batched.count_cells().volumes, 2);
-    assert_eq!(batched.dart_capacity(), one_by_one.dart_capacity());
-    for raw in 1..batched.dart_capacity() as u32 {
-        let d = qmesh::cmap::Dart::from_raw(raw).unwrap();
-        let slot = |m: &CMap3| m.is_live(d).then(|| (m.betas_raw(raw), m.vertex_of(d)));
-        assert_eq!(slot(&batched), slot(&one_by_one), "dart {raw}");
-    }
-}
-
-/// The batch executor writes the matches on all cores (each its own darts): the same
-/// map, dart for dart and vertex for vertex, as `execute` match after match, here with
-/// 216 cubes each replaced by 6 pyramids around a created vertex on two threads.
-#[test]
-fn batched_replacements_on_two_threads_equal_one_by_one() {
-    use qmesh::modify::{DisjointExecutor, Job, execute};
-    use qmesh::query::{Strategy, select};
-    let mut q = Query::new("cube", grid(1, 1, 1), |_| Condition::Any).unwrap();
-    let plan = Plan::new(Operation::Replace, &mut q, &six_pyramids()).unwrap();
-    let set = QuerySet::new(vec![q]);
-    let mut batched = grid(6, 6, 6);
-    let found = find_matches(&batched, &set, &MatchOptions::default());
-    let chosen = select(&batched, &set, &found.matches, Strategy::Greedy, None);
-    assert_eq!(chosen.len(), 216);
     let mut one_by_one = batched.clone();
     let jobs: Vec<Job> = chosen.iter().map(|s| Job { plan: &plan, matched: s.darts.clone() }).collect();
     let pool = rayon::ThreadPoolBuilder::new().num_threads(2).build().unwrap();
@@ -409,7 +379,6 @@ fn batched_replacements_on_two_threads_equal_one_by_one() {
         execute(&mut one_by_one, &plan, &s.darts);
     }
     assert!(batched.is_valid().is_empty());
-    assert_eq!(batched.count_cells().volumes, 6 * 216);
     assert_eq!(batched.dart_capacity(), one_by_one.dart_capacity());
     assert_eq!(batched.nb_vertex_ids(), one_by_one.nb_vertex_ids());
     for raw in 1..batched.dart_capacity() as u32 {
@@ -417,6 +386,24 @@ fn batched_replacements_on_two_threads_equal_one_by_one() {
         let slot = |m: &CMap3| m.is_live(d).then(|| (m.betas_raw(raw), m.vertex_of(d), m.point(d), m.label_of(d)));
         assert_eq!(slot(&batched), slot(&one_by_one), "dart {raw}");
     }
+    (batched, chosen.len())
+}
+
+/// The batch executor takes plans that delete darts one match at a time (its batched
+/// path only adds): the same map, dart for dart, as `execute` match after match.
+#[test]
+fn batched_deletions_equal_one_by_one() {
+    let (m, matches) = batched_equals_one_by_one(Operation::Delete, grid(2, 1, 1), &grid(1, 1, 1), grid(4, 1, 1));
+    assert_eq!((matches, m.count_cells().volumes), (2, 2));
+}
+
+/// The batch executor writes the matches on all cores (each its own darts): the same
+/// map as `execute` match after match, here with 216 cubes each replaced by 6 pyramids
+/// around a created vertex.
+#[test]
+fn batched_replacements_on_two_threads_equal_one_by_one() {
+    let (m, matches) = batched_equals_one_by_one(Operation::Replace, grid(1, 1, 1), &six_pyramids(), grid(6, 6, 6));
+    assert_eq!((matches, m.count_cells().volumes), (216, 6 * 216));
 }
 
 /// The operations' names read back (rule files name them), and each plan's size per
