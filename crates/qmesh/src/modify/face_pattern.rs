@@ -87,15 +87,28 @@ impl FacePattern {
     /// The replacement of [`replace`](Self::replace) as a [`Job`], for
     /// [`DisjointExecutor`](super::DisjointExecutor).
     pub fn job(&self, map: &CMap3, aligned: Vec<Dart>) -> Job<'_> {
-        debug_assert_eq!(aligned.len(), self.k);
+        self.job_on(Self::both_sides(map, aligned))
+    }
+
+    /// The darts a replacement of the half-face `aligned` matches: `aligned`, then the
+    /// darts across (β3) when the face is 3-sewn. Reads the map only (for any thread).
+    pub fn both_sides(map: &CMap3, aligned: Vec<Dart>) -> Vec<Dart> {
         if map.is_free(aligned[0], 3) {
-            return Job { plan: &self.one_side, matched: aligned };
+            return aligned;
         }
+        let k = aligned.len();
         let mut both = aligned;
         both.extend_from_within(..);
-        for t in &mut both[self.k..] {
+        for t in &mut both[k..] {
             *t = map.beta(*t, 3).expect("a 3-sewn face is 3-sewn everywhere");
         }
-        Job { plan: &self.two_sides, matched: both }
+        both
+    }
+
+    /// The job of [`job`](Self::job) on what [`both_sides`](Self::both_sides) gave.
+    pub fn job_on(&self, matched: Vec<Dart>) -> Job<'_> {
+        debug_assert!(matched.len() == self.k || matched.len() == 2 * self.k);
+        let plan = if matched.len() == self.k { &self.one_side } else { &self.two_sides };
+        Job { plan, matched }
     }
 }

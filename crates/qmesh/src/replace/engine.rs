@@ -165,7 +165,11 @@ pub fn replace_cells(
         let mut executor = DisjointExecutor::reuse();
         for chunk in faces.chunks(LOOKUP_CHUNK) {
             let t = Instant::now();
-            let found = on_cores(chunk, |d| find_face(map, set, flags, d, use_signatures));
+            // The darts across are read here too, on all cores.
+            let found = on_cores(chunk, |d| {
+                find_face(map, set, flags, d, use_signatures)
+                    .map(|(i, aligned)| (i, FacePattern::both_sides(map, aligned)))
+            });
             r.query_seconds += t.elapsed().as_secs_f64();
             let t = Instant::now();
             for &(i, _) in found.iter().flatten() {
@@ -174,9 +178,9 @@ pub fn replace_cells(
             let mut jobs = Vec::with_capacity(chunk.len());
             for (&d, found) in chunk.iter().zip(found) {
                 match found {
-                    Some((i, aligned)) => {
+                    Some((i, matched)) => {
                         if let Some(Some(plan)) = &plans[i] {
-                            jobs.push(plan.job(map, aligned));
+                            jobs.push(plan.job_on(matched));
                         }
                         r.matches[i] += 1;
                         r.faces_replaced += 1;
