@@ -200,14 +200,20 @@ impl Octree {
                 }
             }
         }
-        let has_refined_neighbour = |c: &OctCell| {
-            face_and_edge_offsets().any(|d| {
-                let p = [0, 1, 2].map(|k| i64::from(c.ijk[k]) + d[k]);
-                self.root.contains(c.level, p)
-                    && refined.contains(&OctCell { level: c.level, ijk: p.map(|x| x as u32) })
+        // A leaf has one exactly when a cell of its level sharing a face or an edge with it
+        // is refined: the leaves around each refined cell, each counted once.
+        let leaves_around = |r: &OctCell| {
+            let r = *r;
+            face_and_edge_offsets().filter_map(move |d| {
+                let p = [0, 1, 2].map(|k| i64::from(r.ijk[k]) + d[k]);
+                let c = OctCell { level: r.level, ijk: p.map(|x| x as u32) };
+                (self.root.contains(r.level, p) && self.leaves.contains(&c)).then_some(c)
             })
         };
-        self.leaves.par_iter().filter(|c| has_refined_neighbour(c)).count()
+        let mut found: Vec<OctCell> = refined.par_iter().flat_map_iter(leaves_around).collect();
+        found.par_sort_unstable();
+        found.dedup();
+        found.len()
     }
 
     /// Leaves the surface touches, in a stable order.
