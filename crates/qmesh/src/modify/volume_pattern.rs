@@ -77,6 +77,11 @@ impl VolumePattern {
     pub fn job(&self, traversal: VolumeWord) -> Option<Job<'_>> {
         (traversal.word == self.word).then_some(Job { plan: &self.plan, matched: traversal.darts })
     }
+
+    /// [`job`](Self::job) on a traversal kept elsewhere (its darts are copied).
+    pub fn job_following(&self, traversal: &VolumeWord) -> Option<Job<'_>> {
+        (traversal.word == self.word).then(|| Job { plan: &self.plan, matched: traversal.darts.clone() })
+    }
 }
 
 /// The positions in `darts` of the first dart of each volume of `map` they meet.

@@ -2,6 +2,7 @@
 //! every face matching an f-pattern, then every volume matching a v-pattern. Each cell
 //! is replaced at most once, so the result does not depend on the order.
 
+use std::sync::OnceLock;
 use std::time::Instant;
 
 use super::face::align_face;
@@ -160,28 +161,24 @@ pub fn replace_cells(
     let mut coverage = Coverage::default();
     let has = |k: PatternKind| set.count(k) > 0;
     if has(PatternKind::Face) {
-        // Each pattern's plans are made once, when it first matches.
-        let mut plans: Vec<Option<Option<FacePattern>>> = vec![None; set.patterns.len()];
+        // Each pattern's plans are made once, when it first matches (on any core).
+        let plans: Vec<OnceLock<Option<FacePattern>>> = set.patterns.iter().map(|_| OnceLock::new()).collect();
+        let plan = |i: usize| plans[i].get_or_init(|| FacePattern::new(&set.patterns[i])).as_ref();
         let mut executor = DisjointExecutor::reuse();
         for chunk in faces.chunks(LOOKUP_CHUNK) {
             let t = Instant::now();
-            // The darts across are read here too, on all cores.
+            // The match and its job (the darts across read too), on all cores.
             let found = on_cores(chunk, |d| {
                 find_face(map, set, flags, d, use_signatures)
-                    .map(|(i, aligned)| (i, FacePattern::both_sides(map, aligned)))
+                    .map(|(i, aligned)| (i, plan(i).map(|p| p.job_on(FacePattern::both_sides(map, aligned)))))
             });
             r.query_seconds += t.elapsed().as_secs_f64();
             let t = Instant::now();
-            for &(i, _) in found.iter().flatten() {
-                plans[i].get_or_insert_with(|| FacePattern::new(&set.patterns[i]));
-            }
             let mut jobs = Vec::with_capacity(chunk.len());
             for (&d, found) in chunk.iter().zip(found) {
                 match found {
-                    Some((i, matched)) => {
-                        if let Some(Some(plan)) = &plans[i] {
-                            jobs.push(plan.job_on(matched));
-                        }
+                    Some((i, job)) => {
+                        jobs.extend(job);
                         r.matches[i] += 1;
                         r.faces_replaced += 1;
                     }
@@ -197,25 +194,23 @@ pub fn replace_cells(
         executor.recycle();
     }
     if has(PatternKind::Volume) {
-        let mut plans: Vec<Option<Option<VolumePattern>>> = vec![None; set.patterns.len()];
+        let plans: Vec<OnceLock<Option<VolumePattern>>> = set.patterns.iter().map(|_| OnceLock::new()).collect();
+        let plan = |i: usize| plans[i].get_or_init(|| VolumePattern::new(&set.patterns[i])).as_ref();
         let mut executor = DisjointExecutor::reuse();
         for (c, chunk) in volumes.chunks(LOOKUP_CHUNK).enumerate() {
             let t = Instant::now();
-            // The match and the traversal from its start, which the replacement follows.
+            // The match and its job, which follows the traversal from the match's start.
             let found = on_cores(chunk, |d| {
                 find_volume_then(map, set, flags, d, use_signatures, |from_d, i, start| match from_d {
-                    Some(w) if w.darts.first() == Some(&start) => Some((i, w.clone())),
-                    _ => Some((i, word_from(map, Surface::Cell, flags, start, None)?)),
+                    Some(w) if w.darts.first() == Some(&start) => Some((i, plan(i)?.job_following(w)?)),
+                    _ => Some((i, plan(i)?.job(word_from(map, Surface::Cell, flags, start, None)?)?)),
                 })
             });
             r.query_seconds += t.elapsed().as_secs_f64();
             let t = Instant::now();
-            for &(i, _) in found.iter().flatten() {
-                plans[i].get_or_insert_with(|| VolumePattern::new(&set.patterns[i]));
-            }
             let (mut jobs, mut used) = (Vec::with_capacity(chunk.len()), Vec::with_capacity(chunk.len()));
             for (k, (&d, found)) in chunk.iter().zip(found).enumerate() {
-                match found.and_then(|(i, traversal)| Some((i, plans[i].as_ref()?.as_ref()?.job(traversal)?))) {
+                match found {
                     Some((i, job)) => {
                         r.matches[i] += 1;
                         r.volumes_replaced += 1;
@@ -233,7 +228,7 @@ pub fn replace_cells(
             let created = executor.execute(map, &jobs);
             let mut first = 0;
             for (&(i, from), job) in used.iter().zip(&jobs) {
-                let starts = &plans[i].as_ref().and_then(Option::as_ref).expect("a job has a plan").volume_starts;
+                let starts = &plan(i).expect("a job has a plan").volume_starts;
                 r.created_volumes.extend(starts.iter().map(|&k| (created[first + k as usize], i as u32)));
                 r.created_from.extend(starts.iter().map(|_| from));
                 first += job.plan.new_darts.len();
