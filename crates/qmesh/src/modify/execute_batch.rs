@@ -54,8 +54,9 @@ impl DisjointExecutor {
     }
 
     /// Executes every job, as [`execute`](fn@super::execute) would one after another. The
-    /// matches must be pairwise disjoint and no plan may delete darts (such jobs run
-    /// one by one instead). Returns the new darts, job after job, in each plan's order.
+    /// matches must be pairwise disjoint (overlapping ones give a wrong map, never
+    /// undefined behaviour) and no plan may delete darts (such jobs run one by one
+    /// instead). Returns the new darts, job after job, in each plan's order.
     pub fn execute(&mut self, map: &mut CMap3, jobs: &[Job]) -> &[Dart] {
         self.new.clear();
         if jobs.iter().any(|j| !j.plan.deleted.is_empty()) {
