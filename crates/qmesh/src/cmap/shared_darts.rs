@@ -78,7 +78,8 @@ impl SharedDarts<'_> {
         self.labels.map_or(self.uniform_label, |l| l[d.idx()].load(Relaxed))
     }
 
-    /// Writes a new dart (a slot of [`CMap3::reserve_darts`]) as [`CMap3::store_dart`] does.
+    /// Writes a new dart (a slot of [`CMap3::reserve_darts`]): its links (raw), vertex id
+    /// and label, and no mark.
     #[inline]
     pub fn store_dart(&self, d: Dart, betas: [u32; 4], vertex: u32, label: i32) {
         let k = d.idx();
