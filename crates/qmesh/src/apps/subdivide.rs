@@ -90,7 +90,8 @@ pub struct SubdividePhases {
     pub start: f64,
     /// Boxes of the new cells and their contact with the surface.
     pub contact: f64,
-    /// Removing the cells outside the surface.
+    /// Finding the cells outside the surface and removing them (the last level's are
+    /// removed during `finish`).
     pub remove_outside: f64,
     /// The 2:1 balance closure.
     pub balance: f64,
@@ -100,7 +101,8 @@ pub struct SubdividePhases {
     pub lookup: f64,
     /// Applying the replacements and relabelling the children.
     pub apply: f64,
-    /// The final leaves and the count of cells with hanging vertices.
+    /// The final leaves, their mesh and the count of cells with hanging vertices, made
+    /// while the last level's outside cells leave the map.
     pub finish: f64,
 }
 
@@ -129,25 +131,35 @@ pub fn subdivide(
     let t = Instant::now();
     let start = initial_tree(surface, opts.root, opts.margin);
     let root = start.root;
-    let (mut tree, map, mut volumes, mut report) = if opts.direct {
-        let (tree, r) = subdivide_direct(start, surface, opts.levels, opts.remove_outside, progress);
-        (tree, None, Vec::new(), r)
+    let (tree, mesh, map, volumes, mut report) = if opts.direct {
+        let (mut tree, mut r) = subdivide_direct(start, surface, opts.levels, opts.remove_outside, progress);
+        if opts.remove_outside {
+            r.removed_outside += prune_outside(&mut tree, surface);
+        }
+        r.with_hanging_vertices = tree.with_hanging_vertices();
+        let mesh = tree.to_mesh();
+        (tree, mesh, None, Vec::new(), r)
     } else {
-        let (map, r, leaves) = subdivide_qr(start, surface, opts, patterns, progress)?;
-        let volumes: Vec<Dart> = leaves.values().copied().collect();
-        (Octree { root, leaves: leaves.into_keys().collect() }, Some(map), volumes, r)
+        let QrSubdivision { mut map, report: mut r, leaves, last_outside } =
+            subdivide_qr(start, surface, opts, patterns, progress)?;
+        // The octree's mesh needs the leaves only: it is made while the last level's
+        // outside cells leave the map.
+        let t = Instant::now();
+        let (removed, (mesh, hanging, volumes, tree)) = rayon::join(
+            || map.remove_volumes(&last_outside),
+            || {
+                let mut volumes: Vec<Dart> = leaves.values().copied().collect();
+                volumes.sort_unstable();
+                let tree = Octree { root, leaves: leaves.into_keys().collect() };
+                (tree.to_mesh(), tree.with_hanging_vertices(), volumes, tree)
+            },
+        );
+        removed?;
+        r.with_hanging_vertices = hanging;
+        r.phases.finish = t.elapsed().as_secs_f64();
+        (tree, mesh, Some(map), volumes, r)
     };
-    volumes.sort_unstable();
-    if opts.direct && opts.remove_outside {
-        report.removed_outside += prune_outside(&mut tree, surface);
-    }
-    let mesh = tree.to_mesh();
     report.volumes = tree.leaves.len();
-    let t_finish = Instant::now();
-    report.with_hanging_vertices = tree.with_hanging_vertices();
-    if !opts.direct {
-        report.phases.finish = t_finish.elapsed().as_secs_f64();
-    }
     report.per_level = vec![0; usize::from(opts.levels) + 1];
     tree.leaves.iter().for_each(|c| report.per_level[usize::from(c.level)] += 1);
     report.seconds = t.elapsed().as_secs_f64();
@@ -201,14 +213,24 @@ fn subdivide_direct(
     (tree, r)
 }
 
-/// The query-replace subdivision: the map, and its leaves (one dart of each volume).
+/// What [`subdivide_qr`] made.
+struct QrSubdivision {
+    map: CMap3,
+    report: SubdivideReport,
+    /// The leaves, with one dart of their volume.
+    leaves: FxHashMap<OctCell, Dart>,
+    /// One dart of each of the last level's cells outside the surface, still in the map.
+    last_outside: Vec<Dart>,
+}
+
+/// The query-replace subdivision.
 fn subdivide_qr(
     start: Octree,
     surface: &TriangleBvh,
     opts: &SubdivideOptions,
     patterns: Option<&PatternSet>,
     progress: &dyn Fn(u8),
-) -> Result<(CMap3, SubdivideReport, FxHashMap<OctCell, Dart>), MapError> {
+) -> Result<QrSubdivision, MapError> {
     let mut generated = None;
     let set = given_or_generated(patterns, GeneratedKind::HexSubdivision, &mut generated);
     let root = start.root;
@@ -228,6 +250,7 @@ fn subdivide_qr(
     let mut fresh: Vec<(Dart, Aabb)> = map.cells(Orbit::Volume).map(|d| (d, volume_box(&map, d, &mut w))).collect();
     // The leaves of the surface's hierarchy near each cell about to be refined.
     let mut near = NearLeaves::default();
+    let mut last_outside = Vec::new();
     r.phases.start = t.elapsed().as_secs_f64();
     for level in 1..=opts.levels + 1 {
         if level > opts.levels {
@@ -243,11 +266,17 @@ fn subdivide_qr(
         r.phases.contact += t.elapsed().as_secs_f64();
         if opts.remove_outside {
             let t = Instant::now();
-            r.removed_outside += remove_outside_volumes(&mut map, root, surface, &mut cells, &mut leaves)?;
+            let outside = take_outside(root, surface, &mut cells, &mut leaves);
+            r.removed_outside += outside.len();
+            if level > opts.levels {
+                last_outside = outside;
+            } else {
+                map.remove_volumes(&outside)?;
+            }
             r.phases.remove_outside += t.elapsed().as_secs_f64();
         }
         if level > opts.levels {
-            break; // the last level's cells only needed registering (and removing)
+            break; // the last level's cells only needed registering (and finding outside)
         }
         progress(level);
         let parent_level = i32::from(level) - 1;
@@ -271,7 +300,7 @@ fn subdivide_qr(
             fresh.extend(refined.children);
         }
     }
-    Ok((map, r, leaves))
+    Ok(QrSubdivision { map, report: r, leaves, last_outside })
 }
 
 /// The cells to split with `seeds` (leaves of one level, with a dart of their volume)
@@ -295,23 +324,23 @@ fn balance_closure(root: &RootBox, leaves: &FxHashMap<OctCell, Dart>, seeds: &[(
     queue.iter().map(|c| (i32::from(c.level), leaves[c])).collect()
 }
 
-/// Removes from the map, from `cells` and from `leaves` the volumes of `cells` outside
-/// `surface` that it does not touch; returns how many.
-fn remove_outside_volumes(
-    map: &mut CMap3,
+/// Removes from `cells` and from `leaves` the volumes of `cells` outside `surface` that
+/// it does not touch; returns one dart of each, in the order of `cells`, for the caller
+/// to remove them from the map.
+fn take_outside(
     root: RootBox,
     surface: &TriangleBvh,
     cells: &mut Vec<FreshCell>,
     leaves: &mut FxHashMap<OctCell, Dart>,
-) -> Result<usize, MapError> {
+) -> Vec<Dart> {
     let octs: Vec<OctCell> = cells.iter().map(|c| c.cell).collect();
     let touches: Vec<bool> = cells.iter().map(|c| c.touches).collect();
     let mut outside = outside_among(&root, &octs, &touches, surface);
     if outside.is_empty() {
-        return Ok(0);
+        return Vec::new();
     }
     outside.sort_unstable();
-    map.remove_volumes(&outside.iter().map(|&i| cells[i].dart).collect::<Vec<_>>())?;
+    let darts = outside.iter().map(|&i| cells[i].dart).collect();
     let mut gone = vec![false; cells.len()];
     for &i in &outside {
         gone[i] = true;
@@ -322,5 +351,5 @@ fn remove_outside_volumes(
         i += 1;
         !gone[i - 1]
     });
-    Ok(outside.len())
+    darts
 }
