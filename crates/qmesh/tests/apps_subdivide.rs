@@ -47,6 +47,38 @@ fn max_points_inside_an_edge(m: &IndexedMesh) -> usize {
     worst
 }
 
+/// The boxes of the map's volumes and of the mesh's hexahedra, sorted, in quarters of
+/// the finest cell's side: equal when the map's volumes are the octree's leaves (a
+/// leaf's dart naming the wrong volume refines or removes the wrong cell, which the
+/// mesh does not show).
+fn map_and_mesh_boxes(map: &qmesh::cmap::CMap3, mesh: &IndexedMesh) -> (Vec<[i64; 6]>, Vec<[i64; 6]>) {
+    let bounds = |points: &mut dyn Iterator<Item = [f64; 3]>| {
+        let (mut lo, mut hi) = ([f64::MAX; 3], [f64::MIN; 3]);
+        for p in points {
+            (0..3).for_each(|k| (lo[k], hi[k]) = (lo[k].min(p[k]), hi[k].max(p[k])));
+        }
+        (lo, hi)
+    };
+    let of_mesh: Vec<_> =
+        (0..mesh.nb_cells()).map(|c| bounds(&mut mesh.cell(c).1.iter().map(|&i| mesh.points[i as usize]))).collect();
+    let of_map: Vec<_> = map
+        .cells(Orbit::Volume)
+        .map(|v| bounds(&mut map.orbit(v, Orbit::Volume).iter().map(|&x| map.point(x))))
+        .collect();
+    let origin = bounds(&mut mesh.points.iter().copied()).0;
+    let quarter = of_mesh.iter().flat_map(|(lo, hi)| (0..3).map(|k| hi[k] - lo[k])).fold(f64::MAX, f64::min) / 4.0;
+    let key = |boxes: &[([f64; 3], [f64; 3])]| {
+        let r = |x: f64, k: usize| ((x - origin[k]) / quarter).round() as i64;
+        let mut keys: Vec<[i64; 6]> = boxes
+            .iter()
+            .map(|(lo, hi)| [r(lo[0], 0), r(lo[1], 1), r(lo[2], 2), r(hi[0], 0), r(hi[1], 1), r(hi[2], 2)])
+            .collect();
+        keys.sort_unstable();
+        keys
+    };
+    (key(&of_map), key(&of_mesh))
+}
+
 fn run(surface: &TriangleBvh, levels: u8, direct: bool) -> qmesh::apps::Subdivision {
     let opts = SubdivideOptions { levels, direct, ..Default::default() };
     subdivide(surface, &opts, None, &|_| {}).expect("subdivide")
@@ -61,6 +93,8 @@ fn query_replace_and_direct_agree_and_stay_balanced() {
         assert_eq!(qr.mesh, direct.mesh, "levels {levels}: same hexahedra and levels");
         let map = qr.map.as_ref().expect("query-replace keeps its map");
         assert!(map.is_valid().is_empty(), "levels {levels}");
+        let (of_map, of_mesh) = map_and_mesh_boxes(map, &qr.mesh);
+        assert!(of_map == of_mesh, "levels {levels}: the map's volumes are not the octree's leaves");
         assert_eq!(map.count_cells().volumes, qr.report.volumes);
         // Each volume query-replace turns one cell into 8.
         assert_eq!(qr.report.volumes, 1 + 7 * qr.report.volumes_replaced);
@@ -112,7 +146,10 @@ fn bunny_at_level_four_both_ways() {
     let qr = subdivide(&bvh, &SubdivideOptions { direct: false, ..opts }, None, &|_| {}).expect("subdivide");
     assert_eq!(qr.mesh, kept.mesh);
     assert_eq!(qr.report.removed_outside, kept.report.removed_outside);
-    assert!(qr.map.expect("map").is_valid().is_empty());
+    let map = qr.map.expect("map");
+    assert!(map.is_valid().is_empty());
+    let (of_map, of_mesh) = map_and_mesh_boxes(&map, &qr.mesh);
+    assert!(of_map == of_mesh, "the map's volumes are not the octree's leaves");
 }
 
 /// The authors' set-up (root cells on the bounding box, `-init X`): the figures of their

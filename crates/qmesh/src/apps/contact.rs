@@ -33,20 +33,70 @@ impl NearLeaves {
         let parent = c.ancestor(c.level.checked_sub(1)?);
         self.lists.get(&parent).map(|&(start, len)| &self.leaves[start as usize..(start + len) as usize])
     }
+
+    /// Adds the lists of `other` (for other cells) after its own.
+    pub fn append(&mut self, other: NearLeaves) {
+        let shift = self.leaves.len() as u32;
+        self.lists.reserve(other.lists.len());
+        self.lists.extend(other.lists.into_iter().map(|(c, (start, len))| (c, (start + shift, len))));
+        self.leaves.extend(other.leaves);
+    }
 }
 
-/// What one core found for its run of volumes: the cells, the touched cells that keep
-/// leaves (with how many) and those leaves, one list after the other.
+/// What one core found for its run of cells: whether the surface touches each, the
+/// touched cells that keep leaves (with how many) and those leaves, one list after the
+/// other.
 struct Run {
-    cells: Vec<FreshCell>,
+    touches: Vec<bool>,
     kept: Vec<(OctCell, u32)>,
     leaves: Vec<u32>,
 }
 
-/// Each of `volumes` (with its box) as a [`FreshCell`], on all cores, testing the
+/// Whether the surface meets each of `cells` (in order), on all cores, testing the
 /// surface only near each cell's parent (`near`); with the leaves near the touched
 /// cells of level `next_parents`, which the next refinement splits (`None` after the
 /// last one).
+pub(super) fn contacts(
+    root: RootBox,
+    surface: &TriangleBvh,
+    cells: &[OctCell],
+    near: &NearLeaves,
+    next_parents: Option<u8>,
+) -> (Vec<bool>, NearLeaves) {
+    let chunk = cells.len().div_ceil(4 * rayon::current_num_threads()).max(1 << 10);
+    let runs: Vec<Run> = cells
+        .par_chunks(chunk)
+        .map(|run| {
+            let (mut touches, mut kept, mut leaves) = (Vec::with_capacity(run.len()), Vec::new(), Vec::new());
+            for &cell in run {
+                let (cell_box, parent_near) = (root.cell_box(cell), near.of_parent(cell));
+                let touched = surface.intersects_box_near(&cell_box, parent_near);
+                if touched && next_parents == Some(cell.level) {
+                    let before = leaves.len();
+                    surface.leaves_near(&cell_box, parent_near, &mut leaves);
+                    kept.push((cell, (leaves.len() - before) as u32));
+                }
+                touches.push(touched);
+            }
+            Run { touches, kept, leaves }
+        })
+        .collect();
+    let mut next = NearLeaves::default();
+    next.lists.reserve(runs.iter().map(|r| r.kept.len()).sum());
+    let mut touches = Vec::with_capacity(cells.len());
+    for Run { touches: run_touches, kept, leaves } in runs {
+        let mut start = next.leaves.len() as u32;
+        for (c, len) in kept {
+            next.lists.insert(c, (start, len));
+            start += len;
+        }
+        next.leaves.extend(leaves);
+        touches.extend(run_touches);
+    }
+    (touches, next)
+}
+
+/// Each of `volumes` (with its box) as a [`FreshCell`], tested by [`contacts`].
 pub(super) fn fresh_cells(
     root: RootBox,
     surface: &TriangleBvh,
@@ -54,36 +104,9 @@ pub(super) fn fresh_cells(
     near: &NearLeaves,
     next_parents: Option<u8>,
 ) -> (Vec<FreshCell>, NearLeaves) {
-    let chunk = volumes.len().div_ceil(4 * rayon::current_num_threads()).max(1 << 10);
-    let runs: Vec<Run> = volumes
-        .par_chunks(chunk)
-        .map(|run| {
-            let (mut cells, mut kept, mut leaves) = (Vec::with_capacity(run.len()), Vec::new(), Vec::new());
-            for &(dart, b) in run {
-                let cell = cell_of(root, &b);
-                let (cell_box, parent_near) = (root.cell_box(cell), near.of_parent(cell));
-                let touches = surface.intersects_box_near(&cell_box, parent_near);
-                if touches && next_parents == Some(cell.level) {
-                    let before = leaves.len();
-                    surface.leaves_near(&cell_box, parent_near, &mut leaves);
-                    kept.push((cell, (leaves.len() - before) as u32));
-                }
-                cells.push(FreshCell { dart, cell, touches });
-            }
-            Run { cells, kept, leaves }
-        })
-        .collect();
-    let mut next = NearLeaves::default();
-    next.lists.reserve(runs.iter().map(|r| r.kept.len()).sum());
-    let mut cells = Vec::with_capacity(volumes.len());
-    for Run { cells: run_cells, kept, leaves } in runs {
-        let mut start = next.leaves.len() as u32;
-        for (c, len) in kept {
-            next.lists.insert(c, (start, len));
-            start += len;
-        }
-        next.leaves.extend(leaves);
-        cells.extend(run_cells);
-    }
-    (cells, next)
+    let octs: Vec<OctCell> = volumes.par_iter().map(|(_, b)| cell_of(root, b)).collect();
+    let (touches, next) = contacts(root, surface, &octs, near, next_parents);
+    let cells =
+        volumes.iter().zip(octs).zip(touches).map(|((&(dart, _), cell), touches)| FreshCell { dart, cell, touches });
+    (cells.collect(), next)
 }

@@ -1,8 +1,9 @@
 //! One refinement step of the query-replace subdivision (2022 Algorithm 5, §7.1): the
 //! cells' whole edges are split in two, the darts at their corners flagged, then their
 //! faces and volumes query-replaced. What each cell needs is read on all cores; the
-//! map is changed on one thread in the cells' order, so the map is the same whatever
-//! the number of threads.
+//! edges are split on one thread in the cells' order, so the map is the same whatever
+//! the number of threads. Meanwhile the other cores test the surface's contact with
+//! the children-to-be (their octree cells are known before they exist).
 
 use std::time::Instant;
 
@@ -10,9 +11,11 @@ use rayon::prelude::*;
 use smallvec::SmallVec;
 
 use super::box_cells::{along_box_edge, child_box, is_corner, walker_chunk};
+use super::contact::{FreshCell, NearLeaves, contacts};
+use super::octree::{OctCell, RootBox};
 use super::subdivide::SubdivideReport;
-use crate::cmap::{BitSet, CMap3, Dart, MapError, Orbit, OrbitWalker};
-use crate::geom::Aabb;
+use crate::cmap::{BitSet, CMap3, Dart, MapError, Mark, Orbit, OrbitWalker};
+use crate::geom::{Aabb, TriangleBvh};
 use crate::pattern::PatternSet;
 use crate::replace::replace_cells;
 use crate::signature::Flags;
@@ -40,31 +43,79 @@ struct Scratch {
     on_listed_face: BitSet,
 }
 
-/// What [`refine`] made.
-pub(super) struct Refined {
-    /// One dart and the box of each child.
-    pub children: Vec<(Dart, Aabb)>,
-    /// The refined cells' boxes, in their order.
-    pub parents: Vec<Aabb>,
+/// Where the children's contact with the surface is tested (see [`contacts`]).
+pub(super) struct ContactTest<'a> {
+    pub root: RootBox,
+    pub surface: &'a TriangleBvh,
+    /// The leaves of the surface's hierarchy near the cells being refined.
+    pub near: &'a NearLeaves,
+    /// The level whose touched cells the next refinement splits (`None` after the last).
+    pub next_parents: Option<u8>,
 }
 
-/// Refines the volumes of `cells` into their children of level `child_level`: splits
-/// their whole edges, flags their corner darts, query-replaces their faces, then
-/// themselves.
+/// What [`refine`] made.
+pub(super) struct Refined {
+    /// The children, in the order the replacements made them.
+    pub children: Vec<FreshCell>,
+    /// The leaves near the children the next refinement splits.
+    pub near: NearLeaves,
+}
+
+/// Refines the volumes of `cells` (one dart and the octree cell of each, all of one
+/// level) into their children: splits their whole edges, flags their corner darts,
+/// query-replaces their faces, then themselves; and tests the children's contact with
+/// the surface.
 pub(super) fn refine(
     map: &mut CMap3,
     set: &PatternSet,
-    cells: &[Dart],
-    child_level: i32,
+    cells: &[(Dart, OctCell)],
+    contact: &ContactTest,
     use_signatures: bool,
     r: &mut SubdivideReport,
 ) -> Result<Refined, MapError> {
     let t = Instant::now();
-    let before = on_cores(cells, |w, d| read_cell(map, w, d));
-    // The cell's darts take the children's level; the darts the edge splits and the
-    // replacements create copy it.
+    let before = on_cores(cells, |w, &(d, _)| read_cell(map, w, d));
     let flag = map.reserve_mark()?;
-    for c in &before {
+    let octants: Vec<OctCell> = cells.iter().flat_map(|&(_, c)| c.children()).collect();
+    let child_level = i32::from(octants.first().map_or(0, |c| c.level));
+    let (faces, (touches, near)) = rayon::join(
+        || split_edges(map, &before, flag, child_level),
+        || contacts(contact.root, contact.surface, &octants, contact.near, contact.next_parents),
+    );
+    r.phases.split_edges += t.elapsed().as_secs_f64();
+    let t = Instant::now();
+    // Each volume named by a flagged corner dart: in a cube's configuration every one
+    // is a start of its signature, so the lookup's traversal is also the replacement's.
+    let volumes: Vec<Dart> = before.iter().map(|c| c.corners.first().copied().unwrap_or(c.darts[0])).collect();
+    let rep = replace_cells(map, set, Flags::Mark(flag), &faces, &volumes, use_signatures);
+    map.free_mark(flag);
+    r.faces_replaced += rep.faces_replaced;
+    r.volumes_replaced += rep.volumes_replaced;
+    r.phases.lookup += rep.query_seconds;
+    r.phases.apply += t.elapsed().as_secs_f64() - rep.query_seconds;
+    // Each child's octant of its parent's box names its octree cell and contact.
+    let t = Instant::now();
+    let from = &rep.created_from;
+    let children = rep
+        .created_volumes
+        .par_iter()
+        .zip(from)
+        .with_min_len(1 << 12)
+        .map_init(OrbitWalker::new, |w, (&(dart, _), &i)| {
+            let parent = &before[i as usize].bbox;
+            let k = 8 * i as usize + octant(parent, &child_box(map, dart, parent, w));
+            FreshCell { dart, cell: octants[k], touches: touches[k] }
+        })
+        .collect();
+    r.phases.contact += t.elapsed().as_secs_f64();
+    Ok(Refined { children, near })
+}
+
+/// Labels the darts of the cells `before` with the children's level (the darts the
+/// edge splits and the replacements create copy it), marks their corner darts with
+/// `flag`, splits their whole edges; returns one dart of each of their faces.
+fn split_edges(map: &mut CMap3, before: &[Cell], flag: Mark, child_level: i32) -> Vec<Dart> {
+    for c in before {
         c.darts.iter().for_each(|&x| map.set_label_of(x, child_level));
         c.corners.iter().for_each(|&x| map.mark(x, flag));
     }
@@ -79,30 +130,14 @@ pub(super) fn refine(
             map.insert_vertex_in_edge(x, midpoint(map.point(x), map.point(after)));
         }
     }
-    r.phases.split_edges += t.elapsed().as_secs_f64();
-    let t = Instant::now();
-    // Each volume named by a flagged corner dart: in a cube's configuration every one
-    // is a start of its signature, so the lookup's traversal is also the replacement's.
-    let volumes: Vec<Dart> = before.iter().map(|c| c.corners.first().copied().unwrap_or(c.darts[0])).collect();
-    let rep = replace_cells(map, set, Flags::Mark(flag), &faces, &volumes, use_signatures);
-    map.free_mark(flag);
-    r.faces_replaced += rep.faces_replaced;
-    r.volumes_replaced += rep.volumes_replaced;
-    r.phases.lookup += rep.query_seconds;
-    r.phases.apply += t.elapsed().as_secs_f64() - rep.query_seconds;
-    // The children's boxes, for their octree cells and contact tests (counted there).
-    let t = Instant::now();
-    let parents: Vec<Aabb> = before.into_iter().map(|c| c.bbox).collect();
-    let from = &rep.created_from;
-    let children = rep
-        .created_volumes
-        .par_iter()
-        .zip(from)
-        .with_min_len(1 << 12)
-        .map_init(OrbitWalker::new, |w, (&(d, _), &i)| (d, child_box(map, d, &parents[i as usize], w)))
-        .collect();
-    r.phases.contact += t.elapsed().as_secs_f64();
-    Ok(Refined { children, parents })
+    faces
+}
+
+/// The octant of `parent` that `child` is, numbered as [`OctCell::children`] does (bit
+/// k: the upper half along axis k).
+fn octant(parent: &Aabb, child: &Aabb) -> usize {
+    let (p, c) = (parent.centre(), child.centre());
+    (0..3).filter(|&k| c[k] > p[k]).map(|k| 1 << k).sum()
 }
 
 fn read_cell(map: &CMap3, s: &mut Scratch, d: Dart) -> Cell {
@@ -142,13 +177,13 @@ fn read_cell(map: &CMap3, s: &mut Scratch, d: Dart) -> Cell {
 
 /// `f` of every cell, in order, on all cores (each thread's chunk of cells shares a
 /// [`Scratch`]).
-fn on_cores<T: Send>(cells: &[Dart], f: impl Fn(&mut Scratch, Dart) -> T + Sync) -> Vec<T> {
+fn on_cores<C: Sync, T: Send>(cells: &[C], f: impl Fn(&mut Scratch, &C) -> T + Sync) -> Vec<T> {
     let f = &f;
     cells
         .par_chunks(walker_chunk(cells.len()))
         .flat_map_iter(|c| {
             let mut s = Scratch::default();
-            c.iter().map(move |&d| f(&mut s, d))
+            c.iter().map(move |d| f(&mut s, d))
         })
         .collect()
 }

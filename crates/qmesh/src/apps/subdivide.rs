@@ -5,11 +5,11 @@
 
 use std::time::Instant;
 
-use super::box_cells::{cell_of, volume_box};
+use super::box_cells::volume_box;
 use super::contact::{FreshCell, NearLeaves, fresh_cells};
 use super::generated_patterns::{GeneratedKind, given_or_generated};
 use super::octree::{OctCell, Octree, RootBox, coarser_neighbours, outside_among};
-use super::refine::refine;
+use super::refine::{ContactTest, refine};
 use crate::build::{BuildOptions, IndexedMesh, build_map};
 use crate::cmap::{CMap3, Dart, MapError, Orbit, OrbitWalker};
 use crate::geom::{Aabb, TriangleBvh};
@@ -88,14 +88,16 @@ pub struct SubdivideReport {
 pub struct SubdividePhases {
     /// Building the level-0 map.
     pub start: f64,
-    /// Boxes of the new cells and their contact with the surface.
+    /// The level-0 cells' contact with the surface, and which octant of its parent each
+    /// new cell is (the children's contact is tested during `split_edges`).
     pub contact: f64,
     /// Finding the cells outside the surface and removing them (the last level's are
     /// removed during `finish`).
     pub remove_outside: f64,
     /// The 2:1 balance closure.
     pub balance: f64,
-    /// Splitting the cells' edges, flagging their corners, listing their faces.
+    /// Splitting the cells' edges, flagging their corners, listing their faces, while
+    /// the other cores test the surface's contact with the children-to-be.
     pub split_edges: f64,
     /// Looking the faces' and volumes' patterns up (on all cores).
     pub lookup: f64,
@@ -243,24 +245,26 @@ fn subdivide_qr(
     // Each leaf's dart stays a dart of its volume: edge splits and face replacements
     // add darts and relink the old ones, and only refined or removed cells lose theirs.
     let mut leaves: FxHashMap<OctCell, Dart> = FxHashMap::default();
+    let mut w = OrbitWalker::new();
+    let boxes: Vec<(Dart, Aabb)> = map.cells(Orbit::Volume).map(|d| (d, volume_box(&map, d, &mut w))).collect();
+    r.phases.start = t.elapsed().as_secs_f64();
+    // The level whose touched cells the refinement of `level` splits.
+    let parents_of = |level: u8| (level <= opts.levels).then(|| level - 1);
     // The volumes made by the last level: the only ones the surface may touch, or that
     // may be outside and untouched, among the cells of their level (the older leaves
-    // were refined, removed or found inside; balance refines inside cells only).
-    let mut w = OrbitWalker::new();
-    let mut fresh: Vec<(Dart, Aabb)> = map.cells(Orbit::Volume).map(|d| (d, volume_box(&map, d, &mut w))).collect();
-    // The leaves of the surface's hierarchy near each cell about to be refined.
-    let mut near = NearLeaves::default();
+    // were refined, removed or found inside; balance refines inside cells only); and the
+    // leaves of the surface's hierarchy near those the next level refines.
+    let t = Instant::now();
+    let (mut fresh, mut fresh_near) = fresh_cells(root, surface, &boxes, &NearLeaves::default(), parents_of(1));
+    r.phases.contact += t.elapsed().as_secs_f64();
     let mut last_outside = Vec::new();
-    r.phases.start = t.elapsed().as_secs_f64();
     for level in 1..=opts.levels + 1 {
         if level > opts.levels {
             // No replacement follows: the buffers the passes kept would only add to the peak.
             crate::modify::DisjointExecutor::release_recycled();
         }
         let t = Instant::now();
-        let next_parents = (level <= opts.levels).then(|| level - 1);
-        let (mut cells, next_near) = fresh_cells(root, surface, &fresh, &near, next_parents);
-        near = next_near;
+        let (mut cells, near) = (std::mem::take(&mut fresh), std::mem::take(&mut fresh_near));
         leaves.reserve(cells.len());
         leaves.extend(cells.iter().map(|c| (c.cell, c.dart)));
         r.phases.contact += t.elapsed().as_secs_f64();
@@ -290,14 +294,15 @@ fn subdivide_qr(
         r.phases.balance += t.elapsed().as_secs_f64();
         r.balance_splits += plan.len() - touched.len();
         plan.sort_unstable();
-        fresh.clear();
+        let contact = ContactTest { root, surface, near: &near, next_parents: parents_of(level + 1) };
         for batch in plan.chunk_by(|a, b| a.0 == b.0) {
-            let cells: Vec<Dart> = batch.iter().map(|&(_, d)| d).collect();
-            let refined = refine(&mut map, set, &cells, batch[0].0 + 1, opts.use_signatures, &mut r)?;
-            refined.parents.iter().for_each(|b| {
-                leaves.remove(&cell_of(root, b));
+            let cells: Vec<(Dart, OctCell)> = batch.iter().map(|&(_, d, c)| (d, c)).collect();
+            let refined = refine(&mut map, set, &cells, &contact, opts.use_signatures, &mut r)?;
+            cells.iter().for_each(|(_, c)| {
+                leaves.remove(c);
             });
             fresh.extend(refined.children);
+            fresh_near.append(refined.near);
         }
     }
     Ok(QrSubdivision { map, report: r, leaves, last_outside })
@@ -307,8 +312,13 @@ fn subdivide_qr(
 /// so that 2:1 balance survives: every leaf sharing a face or an edge with a
 /// cell to split and coarser than it is split first, transitively (2022 §7.1, "those
 /// having more than one subdivision level of difference with a neighbour"). Found on
-/// the octree's leaves, which name the map's volumes. Returns (level, volume dart) pairs.
-fn balance_closure(root: &RootBox, leaves: &FxHashMap<OctCell, Dart>, seeds: &[(OctCell, Dart)]) -> Vec<(i32, Dart)> {
+/// the octree's leaves, which name the map's volumes. Returns (level, volume dart, cell)
+/// triples.
+fn balance_closure(
+    root: &RootBox,
+    leaves: &FxHashMap<OctCell, Dart>,
+    seeds: &[(OctCell, Dart)],
+) -> Vec<(i32, Dart, OctCell)> {
     let mut in_plan: FxHashSet<OctCell> = seeds.iter().map(|s| s.0).collect();
     let mut queue: Vec<OctCell> = seeds.iter().map(|s| s.0).collect();
     let mut next = 0;
@@ -321,7 +331,7 @@ fn balance_closure(root: &RootBox, leaves: &FxHashMap<OctCell, Dart>, seeds: &[(
             }
         }
     }
-    queue.iter().map(|c| (i32::from(c.level), leaves[c])).collect()
+    queue.iter().map(|&c| (i32::from(c.level), leaves[&c], c)).collect()
 }
 
 /// Removes from `cells` and from `leaves` the volumes of `cells` outside `surface` that
