@@ -263,14 +263,10 @@ fn subdivide_qr(
             // No replacement follows: the buffers the passes kept would only add to the peak.
             crate::modify::DisjointExecutor::release_recycled();
         }
-        let t = Instant::now();
         let (mut cells, near) = (std::mem::take(&mut fresh), std::mem::take(&mut fresh_near));
-        leaves.reserve(cells.len());
-        leaves.extend(cells.iter().map(|c| (c.cell, c.dart)));
-        r.phases.contact += t.elapsed().as_secs_f64();
         if opts.remove_outside {
             let t = Instant::now();
-            let outside = take_outside(root, surface, &mut cells, &mut leaves);
+            let outside = take_outside(root, surface, &mut cells);
             r.removed_outside += outside.len();
             if level > opts.levels {
                 last_outside = outside;
@@ -279,6 +275,10 @@ fn subdivide_qr(
             }
             r.phases.remove_outside += t.elapsed().as_secs_f64();
         }
+        let t = Instant::now();
+        leaves.reserve(cells.len());
+        leaves.extend(cells.iter().map(|c| (c.cell, c.dart)));
+        r.phases.contact += t.elapsed().as_secs_f64();
         if level > opts.levels {
             break; // the last level's cells only needed registering (and finding outside)
         }
@@ -334,15 +334,9 @@ fn balance_closure(
     queue.iter().map(|&c| (i32::from(c.level), leaves[&c], c)).collect()
 }
 
-/// Removes from `cells` and from `leaves` the volumes of `cells` outside `surface` that
-/// it does not touch; returns one dart of each, in the order of `cells`, for the caller
-/// to remove them from the map.
-fn take_outside(
-    root: RootBox,
-    surface: &TriangleBvh,
-    cells: &mut Vec<FreshCell>,
-    leaves: &mut FxHashMap<OctCell, Dart>,
-) -> Vec<Dart> {
+/// Removes from `cells` those outside `surface` that it does not touch; returns one dart
+/// of each, in the order of `cells`, for the caller to remove them from the map.
+fn take_outside(root: RootBox, surface: &TriangleBvh, cells: &mut Vec<FreshCell>) -> Vec<Dart> {
     let octs: Vec<OctCell> = cells.iter().map(|c| c.cell).collect();
     let touches: Vec<bool> = cells.iter().map(|c| c.touches).collect();
     let mut outside = outside_among(&root, &octs, &touches, surface);
@@ -354,7 +348,6 @@ fn take_outside(
     let mut gone = vec![false; cells.len()];
     for &i in &outside {
         gone[i] = true;
-        leaves.remove(&cells[i].cell);
     }
     let mut i = 0;
     cells.retain(|_| {
