@@ -43,6 +43,11 @@ impl NearLeaves {
     }
 }
 
+/// Parents' lists longer than this are not used: the walk from the hierarchy's root
+/// prunes whole subtrees, where a long list is tested leaf by leaf (the first levels'
+/// cells are near most of the surface).
+const LONGEST_LIST_USED: usize = 256;
+
 /// What one core found for its run of cells: whether the surface touches each, the
 /// touched cells that keep leaves (with how many) and those leaves, one list after the
 /// other.
@@ -63,13 +68,15 @@ pub(super) fn contacts(
     near: &NearLeaves,
     next_parents: Option<u8>,
 ) -> (Vec<bool>, NearLeaves) {
-    let chunk = cells.len().div_ceil(4 * rayon::current_num_threads()).max(1 << 10);
+    // Small runs: the first levels have few cells, each tested against much of the surface.
+    let chunk = cells.len().div_ceil(4 * rayon::current_num_threads()).max(1);
     let runs: Vec<Run> = cells
         .par_chunks(chunk)
         .map(|run| {
             let (mut touches, mut kept, mut leaves) = (Vec::with_capacity(run.len()), Vec::new(), Vec::new());
             for &cell in run {
-                let (cell_box, parent_near) = (root.cell_box(cell), near.of_parent(cell));
+                let parent_near = near.of_parent(cell).filter(|l| l.len() <= LONGEST_LIST_USED);
+                let cell_box = root.cell_box(cell);
                 let touched = surface.intersects_box_near(&cell_box, parent_near);
                 if touched && next_parents == Some(cell.level) {
                     let before = leaves.len();
