@@ -43,9 +43,9 @@ impl NearLeaves {
     }
 }
 
-/// Parents' lists longer than this are not used: the walk from the hierarchy's root
-/// prunes whole subtrees, where a long list is tested leaf by leaf (the first levels'
-/// cells are near most of the surface).
+/// Longer lists are not kept: the walk from the hierarchy's root prunes whole subtrees,
+/// where a long list is tested leaf by leaf (the first levels' cells are near most of
+/// the surface), and the children of a cell without a list walk from the root.
 const LONGEST_LIST_USED: usize = 256;
 
 /// What one core found for its run of cells: whether the surface touches each, the
@@ -75,13 +75,14 @@ pub(super) fn contacts(
         .map(|run| {
             let (mut touches, mut kept, mut leaves) = (Vec::with_capacity(run.len()), Vec::new(), Vec::new());
             for &cell in run {
-                let parent_near = near.of_parent(cell).filter(|l| l.len() <= LONGEST_LIST_USED);
+                let parent_near = near.of_parent(cell);
                 let cell_box = root.cell_box(cell);
                 let touched = surface.intersects_box_near(&cell_box, parent_near);
                 if touched && next_parents == Some(cell.level) {
                     let before = leaves.len();
-                    surface.leaves_near(&cell_box, parent_near, &mut leaves);
-                    kept.push((cell, (leaves.len() - before) as u32));
+                    if surface.leaves_near(&cell_box, parent_near, &mut leaves, LONGEST_LIST_USED) {
+                        kept.push((cell, (leaves.len() - before) as u32));
+                    }
                 }
                 touches.push(touched);
             }

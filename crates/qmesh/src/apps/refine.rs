@@ -10,7 +10,7 @@ use std::time::Instant;
 use rayon::prelude::*;
 use smallvec::SmallVec;
 
-use super::box_cells::{along_box_edge, child_box, is_corner, walker_chunk};
+use super::box_cells::{along_box_edge, child_box, is_corner};
 use super::contact::{FreshCell, NearLeaves, contacts};
 use super::octree::{OctCell, RootBox};
 use super::subdivide::SubdivideReport;
@@ -175,17 +175,10 @@ fn read_cell(map: &CMap3, s: &mut Scratch, d: Dart) -> Cell {
     Cell { darts, bbox, whole_edges, corners, faces }
 }
 
-/// `f` of every cell, in order, on all cores (each thread's chunk of cells shares a
-/// [`Scratch`]).
+/// `f` of every cell, in order, on all cores (the cells of one of rayon's pieces share
+/// a [`Scratch`]: a few per thread, as a scratch grows bit sets as large as the map).
 fn on_cores<C: Sync, T: Send>(cells: &[C], f: impl Fn(&mut Scratch, &C) -> T + Sync) -> Vec<T> {
-    let f = &f;
-    cells
-        .par_chunks(walker_chunk(cells.len()))
-        .flat_map_iter(|c| {
-            let mut s = Scratch::default();
-            c.iter().map(move |d| f(&mut s, d))
-        })
-        .collect()
+    cells.par_iter().with_min_len(64).map_init(Scratch::default, |s, c| f(s, c)).collect()
 }
 
 fn midpoint(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {

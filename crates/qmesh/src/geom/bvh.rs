@@ -211,17 +211,27 @@ impl TriangleBvh {
     /// Appends to `out` the leaves (node indices) whose bounds meet `b` grown by 10⁻⁶ of
     /// its size (and by a few rounding units of its coordinates): every leaf that
     /// [`intersects_box`](Self::intersects_box) of a box inside `b` looks at. Looked for
-    /// among `near` when given (the leaves near a box containing `b`).
-    pub fn leaves_near(&self, b: &Aabb, near: Option<&[u32]>, out: &mut Vec<u32>) {
+    /// among `near` when given (the leaves near a box containing `b`). Gives up when
+    /// more than `max` leaves are near: returns `false` and leaves `out` as it was.
+    pub fn leaves_near(&self, b: &Aabb, near: Option<&[u32]>, out: &mut Vec<u32>, max: usize) -> bool {
         let e = b.extent();
         let pad = |k: usize| 1e-6 * e[k] + 16.0 * f64::EPSILON * b.lo[k].abs().max(b.hi[k].abs()) + f64::MIN_POSITIVE;
         let wide = Aabb { lo: [0, 1, 2].map(|k| b.lo[k] - pad(k)), hi: [0, 1, 2].map(|k| b.hi[k] + pad(k)) };
+        let mut keep_at_most = |found: &mut dyn Iterator<Item = u32>| {
+            let before = out.len();
+            out.extend(found.take(max.saturating_add(1)));
+            let within = out.len() - before <= max;
+            if !within {
+                out.truncate(before);
+            }
+            within
+        };
         match near {
             Some(leaves) => {
-                out.extend(leaves.iter().copied().filter(|&i| self.nodes[i as usize].bounds.overlaps(&wide)))
+                keep_at_most(&mut leaves.iter().copied().filter(|&i| self.nodes[i as usize].bounds.overlaps(&wide)))
             }
-            None if self.nodes.is_empty() => {}
-            None => out.extend(self.leaves_meeting(&wide)),
+            None if self.nodes.is_empty() => true,
+            None => keep_at_most(&mut self.leaves_meeting(&wide)),
         }
     }
 
@@ -359,10 +369,10 @@ mod tests {
         };
         let root = Aabb { lo: [0.0; 3], hi: [4.0; 3] };
         let (mut near_root, mut hits) = (Vec::new(), 0);
-        bvh.leaves_near(&root, None, &mut near_root);
+        assert!(bvh.leaves_near(&root, None, &mut near_root, usize::MAX));
         for child in octants(&root) {
             let mut near_child = Vec::new();
-            bvh.leaves_near(&child, Some(&near_root), &mut near_child);
+            assert!(bvh.leaves_near(&child, Some(&near_root), &mut near_child, usize::MAX));
             for grandchild in octants(&child) {
                 let from_root = bvh.intersects_box(&grandchild);
                 assert_eq!(bvh.intersects_box_near(&grandchild, Some(&near_child)), from_root, "{grandchild:?}");
@@ -378,7 +388,8 @@ mod tests {
         assert!(bvh.intersects_box(&side));
         assert_eq!(bvh.leaves_meeting(&root).count(), 0);
         let mut near = Vec::new();
-        bvh.leaves_near(&root, None, &mut near);
+        assert!(!bvh.leaves_near(&root, None, &mut near, 0) && near.is_empty(), "more than none are near");
+        assert!(bvh.leaves_near(&root, None, &mut near, usize::MAX));
         assert!(bvh.intersects_box_near(&side, Some(&near)));
     }
 }
