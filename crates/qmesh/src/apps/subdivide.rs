@@ -94,7 +94,8 @@ pub struct SubdividePhases {
     /// Finding the cells outside the surface and removing them (the last level's are
     /// removed during `finish`).
     pub remove_outside: f64,
-    /// The 2:1 balance closure.
+    /// Registering a level's cells as leaves and finding the 2:1 balance closure, beyond
+    /// the time of the removal they run beside.
     pub balance: f64,
     /// Splitting the cells' edges, flagging their corners, listing their faces, while
     /// the other cores test the surface's contact with the children-to-be.
@@ -264,23 +265,25 @@ fn subdivide_qr(
             crate::modify::DisjointExecutor::release_recycled();
         }
         let (mut cells, near) = (std::mem::take(&mut fresh), std::mem::take(&mut fresh_near));
+        let mut outside = Vec::new();
         if opts.remove_outside {
             let t = Instant::now();
-            let outside = take_outside(root, surface, &mut cells);
+            outside = take_outside(root, surface, &mut cells);
             r.removed_outside += outside.len();
-            if level > opts.levels {
-                last_outside = outside;
-            } else {
-                map.remove_volumes(&outside)?;
-            }
             r.phases.remove_outside += t.elapsed().as_secs_f64();
         }
-        let t = Instant::now();
-        leaves.reserve(cells.len());
-        leaves.extend(cells.iter().map(|c| (c.cell, c.dart)));
-        r.phases.contact += t.elapsed().as_secs_f64();
+        let register = |leaves: &mut FxHashMap<OctCell, Dart>| {
+            leaves.reserve(cells.len());
+            leaves.extend(cells.iter().map(|c| (c.cell, c.dart)));
+        };
         if level > opts.levels {
-            break; // the last level's cells only needed registering (and finding outside)
+            // The last level's cells only need registering (and their outside ones
+            // finding): they leave the map in `subdivide`, beside the mesh.
+            let t = Instant::now();
+            register(&mut leaves);
+            r.phases.contact += t.elapsed().as_secs_f64();
+            last_outside = outside;
+            break;
         }
         progress(level);
         let parent_level = i32::from(level) - 1;
@@ -289,9 +292,25 @@ fn subdivide_qr(
             .filter(|c| c.touches && i32::from(c.cell.level) == parent_level)
             .map(|c| (c.cell, c.dart))
             .collect();
+        // The outside cells leave the map while the balance closure is found on the
+        // octree's leaves (which never name them).
         let t = Instant::now();
-        let mut plan = balance_closure(&root, &leaves, &touched);
-        r.phases.balance += t.elapsed().as_secs_f64();
+        let (removing, mut plan) = rayon::join(
+            || {
+                let t = Instant::now();
+                if outside.is_empty() {
+                    return Ok(0.0);
+                }
+                map.remove_volumes(&outside).map(|_| t.elapsed().as_secs_f64())
+            },
+            || {
+                register(&mut leaves);
+                balance_closure(&root, &leaves, &touched)
+            },
+        );
+        let removing = removing?;
+        r.phases.remove_outside += removing;
+        r.phases.balance += t.elapsed().as_secs_f64() - removing;
         r.balance_splits += plan.len() - touched.len();
         plan.sort_unstable();
         let contact = ContactTest { root, surface, near: &near, next_parents: parents_of(level + 1) };
