@@ -143,7 +143,7 @@ pub fn subdivide(
         let mesh = tree.to_mesh();
         (tree, mesh, None, Vec::new(), r)
     } else {
-        let QrSubdivision { mut map, report: mut r, leaves, last_outside } =
+        let QrSubdivision { mut map, report: mut r, leaves, last_level, last_outside } =
             subdivide_qr(start, surface, opts, patterns, progress)?;
         // The octree's mesh needs the leaves only: it is made while the last level's
         // outside cells leave the map.
@@ -151,9 +151,11 @@ pub fn subdivide(
         let (removed, (mesh, hanging, volumes, tree)) = rayon::join(
             || map.remove_volumes(&last_outside),
             || {
-                let mut volumes: Vec<Dart> = leaves.values().copied().collect();
+                let mut volumes: Vec<Dart> =
+                    leaves.values().chain(last_level.iter().map(|c| &c.dart)).copied().collect();
                 volumes.sort_unstable();
-                let tree = Octree { root, leaves: leaves.into_keys().collect() };
+                let tree =
+                    Octree { root, leaves: leaves.into_keys().chain(last_level.iter().map(|c| c.cell)).collect() };
                 (tree.to_mesh(), tree.with_hanging_vertices(), volumes, tree)
             },
         );
@@ -220,8 +222,10 @@ fn subdivide_direct(
 struct QrSubdivision {
     map: CMap3,
     report: SubdivideReport,
-    /// The leaves, with one dart of their volume.
+    /// The leaves before the last level, with one dart of their volume.
     leaves: FxHashMap<OctCell, Dart>,
+    /// The last level's cells (leaves too), but those outside the surface.
+    last_level: Vec<FreshCell>,
     /// One dart of each of the last level's cells outside the surface, still in the map.
     last_outside: Vec<Dart>,
 }
@@ -258,12 +262,9 @@ fn subdivide_qr(
     let t = Instant::now();
     let (mut fresh, mut fresh_near) = fresh_cells(root, surface, &boxes, &NearLeaves::default(), parents_of(1));
     r.phases.contact += t.elapsed().as_secs_f64();
-    let mut last_outside = Vec::new();
-    for level in 1..=opts.levels + 1 {
-        if level > opts.levels {
-            // No replacement follows: the buffers the passes kept would only add to the peak.
-            crate::modify::DisjointExecutor::release_recycled();
-        }
+    let mut level = 0;
+    loop {
+        level += 1;
         let (mut cells, near) = (std::mem::take(&mut fresh), std::mem::take(&mut fresh_near));
         let mut outside = Vec::new();
         if opts.remove_outside {
@@ -272,18 +273,12 @@ fn subdivide_qr(
             r.removed_outside += outside.len();
             r.phases.remove_outside += t.elapsed().as_secs_f64();
         }
-        let register = |leaves: &mut FxHashMap<OctCell, Dart>| {
-            leaves.reserve(cells.len());
-            leaves.extend(cells.iter().map(|c| (c.cell, c.dart)));
-        };
         if level > opts.levels {
-            // The last level's cells only need registering (and their outside ones
-            // finding): they leave the map in `subdivide`, beside the mesh.
-            let t = Instant::now();
-            register(&mut leaves);
-            r.phases.contact += t.elapsed().as_secs_f64();
-            last_outside = outside;
-            break;
+            // The last level's cells are not refined: the outside ones leave the map in
+            // `subdivide`, while the others join the leaves there, beside the mesh. No
+            // replacement follows: the buffers the passes kept would only add to the peak.
+            crate::modify::DisjointExecutor::release_recycled();
+            return Ok(QrSubdivision { map, report: r, leaves, last_level: cells, last_outside: outside });
         }
         progress(level);
         let parent_level = i32::from(level) - 1;
@@ -304,7 +299,8 @@ fn subdivide_qr(
                 map.remove_volumes(&outside).map(|_| t.elapsed().as_secs_f64())
             },
             || {
-                register(&mut leaves);
+                leaves.reserve(cells.len());
+                leaves.extend(cells.iter().map(|c| (c.cell, c.dart)));
                 balance_closure(&root, &leaves, &touched)
             },
         );
@@ -324,7 +320,6 @@ fn subdivide_qr(
             fresh_near.append(refined.near);
         }
     }
-    Ok(QrSubdivision { map, report: r, leaves, last_outside })
 }
 
 /// The cells to split with `seeds` (leaves of one level, with a dart of their volume)
