@@ -224,7 +224,8 @@ struct QrSubdivision {
     report: SubdivideReport,
     /// The leaves before the last level, with one dart of their volume.
     leaves: FxHashMap<OctCell, Dart>,
-    /// The last level's cells (leaves too), but those outside the surface.
+    /// The last level's cells that are not outside the surface: leaves too, not yet in
+    /// `leaves`.
     last_level: Vec<FreshCell>,
     /// One dart of each of the last level's cells outside the surface, still in the map.
     last_outside: Vec<Dart>,
