@@ -347,16 +347,16 @@ pub fn outside_among(root: &RootBox, cells: &[OctCell], touched: &[bool], surfac
             parent[a.max(b) as usize] = a.min(b);
         }
     }
-    let mut inside: FxHashMap<u32, bool> = FxHashMap::default();
-    let mut out = Vec::new();
-    for k in 0..order.len() as u32 {
-        let r = find(&mut parent, k);
-        let centre = || root.cell_box(cells[order[r as usize] as usize]).centre();
-        if !*inside.entry(r).or_insert_with(|| surface.contains(centre())) {
-            out.push(order[k as usize] as usize);
-        }
-    }
-    out
+    let regions: Vec<u32> = (0..order.len() as u32).map(|k| find(&mut parent, k)).collect();
+    // One winding number per region (at its root, its first cell), on all cores.
+    let roots: Vec<u32> = (0..order.len() as u32).filter(|&k| regions[k as usize] == k).collect();
+    let root_inside: Vec<bool> = roots
+        .par_iter()
+        .map(|&r| surface.contains(root.cell_box(cells[order[r as usize] as usize]).centre()))
+        .collect();
+    let mut inside = vec![false; order.len()];
+    roots.iter().zip(root_inside).for_each(|(&r, i)| inside[r as usize] = i);
+    (0..order.len()).filter(|&k| !inside[regions[k] as usize]).map(|k| order[k] as usize).collect()
 }
 
 #[cfg(test)]

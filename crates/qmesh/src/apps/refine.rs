@@ -100,7 +100,7 @@ pub(super) fn refine(
         .created_volumes
         .par_iter()
         .zip(from)
-        .with_min_len(1 << 12)
+        .with_min_len(1 << 9)
         .map_init(OrbitWalker::new, |w, (&(dart, _), &i)| {
             let parent = &before[i as usize].bbox;
             let k = 8 * i as usize + octant(parent, &child_box(map, dart, parent, w));

@@ -468,7 +468,7 @@ impl CMap3 {
 /// first writes into a grown table fault its pages in, which the kernel serves on
 /// every core at once.
 fn extend_on_cores<T: Copy + Send + Sync>(v: &mut Vec<T>, value: T, n: usize) {
-    if n < 1 << 16 {
+    if n < 1 << 12 {
         v.resize(v.len() + n, value);
     } else {
         v.par_extend(rayon::iter::repeat_n(value, n));
