@@ -14,6 +14,7 @@ mod mc_field;
 mod mc_grid;
 mod mc_patterns;
 mod octree;
+mod outside;
 mod recombine;
 mod recombine_repair;
 mod refine;

@@ -73,7 +73,7 @@ impl RootBox {
     }
 
     /// Whether the same-level position `p` of a cell at `level` is inside the grid.
-    fn contains(&self, level: u8, p: [i64; 3]) -> bool {
+    pub(super) fn contains(&self, level: u8, p: [i64; 3]) -> bool {
         let n = self.cells_at(level);
         (0..3).all(|k| (0..n[k]).contains(&p[k]))
     }
@@ -232,7 +232,7 @@ impl Octree {
     pub fn outside_leaves(&self, surface: &TriangleBvh) -> Vec<OctCell> {
         let leaves = self.sorted_leaves();
         let touched: Vec<bool> = leaves.par_iter().map(|&c| surface.intersects_box(&self.root.cell_box(c))).collect();
-        outside_among(&self.root, &leaves, &touched, surface).into_iter().map(|i| leaves[i]).collect()
+        super::outside::outside_among(&self.root, &leaves, &touched, surface).into_iter().map(|i| leaves[i]).collect()
     }
 
     /// Leaves sorted by (level, position): a deterministic order for output.
@@ -302,61 +302,6 @@ impl Octree {
         let position = self.lattice_position(&leaves);
         side.par_iter().enumerate().map(|(v, s)| s.unwrap_or_else(|| surface.contains(position(lattice[v])))).collect()
     }
-}
-
-/// The indices of the `cells` (distinct leaves of one octree) outside the surface and
-/// untouched by it (`touched[i]`: the surface meets cell i). The untouched cells are
-/// grouped into face-connected regions (the surface cannot separate two face
-/// neighbours it touches neither of); one winding number per region decides, at the
-/// centre of its first cell in (level, position) order. A neighbour is looked for at
-/// its own size and then coarser, down to the coarsest level among `cells`.
-pub fn outside_among(root: &RootBox, cells: &[OctCell], touched: &[bool], surface: &TriangleBvh) -> Vec<usize> {
-    let mut order: Vec<u32> = (0..cells.len() as u32).filter(|&i| !touched[i as usize]).collect();
-    order.par_sort_unstable_by_key(|&i| cells[i as usize]);
-    // Positions in `order` of the untouched cells.
-    let index: FxHashMap<OctCell, u32> =
-        order.iter().enumerate().map(|(k, &i)| (cells[i as usize], k as u32)).collect();
-    let coarsest = cells.iter().map(|c| c.level).min().unwrap_or(0);
-    let neighbour = |c: OctCell, d: [i64; 3]| {
-        let p = [0, 1, 2].map(|k| i64::from(c.ijk[k]) + d[k]);
-        if !root.contains(c.level, p) {
-            return None;
-        }
-        let same = OctCell { level: c.level, ijk: p.map(|x| x as u32) };
-        (coarsest..=c.level).rev().find_map(|l| index.get(&same.ancestor(l)).copied())
-    };
-    let mut parent: Vec<u32> = (0..order.len() as u32).collect();
-    fn find(parent: &mut [u32], mut i: u32) -> u32 {
-        while parent[i as usize] != i {
-            parent[i as usize] = parent[parent[i as usize] as usize];
-            i = parent[i as usize];
-        }
-        i
-    }
-    const FACES: [[i64; 3]; 6] = [[-1, 0, 0], [1, 0, 0], [0, -1, 0], [0, 1, 0], [0, 0, -1], [0, 0, 1]];
-    // The neighbours are looked up on all cores, then joined in order (the same sets
-    // whatever the number of threads).
-    let neighbours: Vec<[u32; 6]> = order
-        .par_iter()
-        .with_min_len(1 << 12)
-        .map(|&i| FACES.map(|d| neighbour(cells[i as usize], d).unwrap_or(u32::MAX)))
-        .collect();
-    for (k, around) in neighbours.iter().enumerate() {
-        for &j in around.iter().filter(|&&j| j != u32::MAX) {
-            let (a, b) = (find(&mut parent, k as u32), find(&mut parent, j));
-            parent[a.max(b) as usize] = a.min(b);
-        }
-    }
-    let regions: Vec<u32> = (0..order.len() as u32).map(|k| find(&mut parent, k)).collect();
-    // One winding number per region (at its root, its first cell), on all cores.
-    let roots: Vec<u32> = (0..order.len() as u32).filter(|&k| regions[k as usize] == k).collect();
-    let root_inside: Vec<bool> = roots
-        .par_iter()
-        .map(|&r| surface.contains(root.cell_box(cells[order[r as usize] as usize]).centre()))
-        .collect();
-    let mut inside = vec![false; order.len()];
-    roots.iter().zip(root_inside).for_each(|(&r, i)| inside[r as usize] = i);
-    (0..order.len()).filter(|&k| !inside[regions[k] as usize]).map(|k| order[k] as usize).collect()
 }
 
 #[cfg(test)]
