@@ -37,12 +37,20 @@ impl CMap3 {
         by_id.par_sort_unstable();
         let groups: Vec<&[(u32, u32)]> = by_id.chunk_by(|a, b| a.0 == b.0).filter(|g| g.len() > 1).collect();
         let map = &*self;
+        // Each touched dart's step along the boundary around its origin, all read at
+        // once on all cores: the steps' memory reads overlap, where the walks below,
+        // step after step, would wait for each one.
+        let steps: Vec<FanStep> = touched
+            .par_iter()
+            .with_min_len(1 << 10)
+            .map(|&t| if map.is_live(t) { map.fan_step(t.raw()) } else { FanStep::NONE })
+            .collect();
         // The orbits after the first of one id, each with where it was first met. Most
         // ids have one orbit: the others are looked for only among the darts outside it.
         let split_off = |w: &mut OrbitWalker, group: &[(u32, u32)]| {
             let first = touched[group[0].1 as usize];
             let mut out: Vec<(u32, Vec<Dart>)> = Vec::new();
-            if map.boundary_fan_reaches(first, group.iter().map(|g| touched[g.1 as usize])) {
+            if map.boundary_fan_reaches(first, group.iter().map(|g| (touched[g.1 as usize], steps[g.1 as usize]))) {
                 return out;
             }
             w.collect(map, first, Orbit::Vertex);
@@ -79,37 +87,44 @@ impl CMap3 {
 
     /// Whether walking around the origin of `first`, a 3-free dart, along the
     /// boundary faces there reaches every dart of `darts` (3-free darts with the same
-    /// origin). Each step turns around an edge through the volumes still there, so what
-    /// it reaches is in the vertex orbit of `first`: a cheap proof that a vertex did not
-    /// come apart (a vertex whose boundary is not one fan, or a map with 2-free darts,
-    /// gets `false`, and the caller walks the whole orbit).
-    fn boundary_fan_reaches(&self, first: Dart, darts: impl Iterator<Item = Dart>) -> bool {
-        /// Steps after which the fan is given up (far more boundary faces than a vertex of a mesh has).
-        const MAX_STEPS: usize = 1 << 12;
-        let mut wanted: smallvec::SmallVec<[u32; 16]> = darts.map(Dart::raw).filter(|&x| x != first.raw()).collect();
-        let b = |x: u32, i: usize| self.beta_raw(x, i);
+    /// origin, each with its [`fan_step`](Self::fan_step)). Each step turns around an
+    /// edge through the volumes still there, so what it reaches is in the vertex orbit
+    /// of `first`: a cheap proof that a vertex did not come apart (a vertex whose
+    /// boundary is not one fan, or a map with 2-free darts, gets `false`, and the caller
+    /// walks the whole orbit).
+    fn boundary_fan_reaches(&self, first: Dart, darts: impl Iterator<Item = (Dart, FanStep)>) -> bool {
         let start = first.raw();
-        if b(start, 3) != 0 {
+        if self.beta_raw(start, 3) != 0 {
             return false;
         }
-        let mut x = start;
-        let mut steps = 0;
+        let known: smallvec::SmallVec<[(u32, FanStep); 16]> = darts.map(|(d, s)| (d.raw(), s)).collect();
+        let mut wanted: smallvec::SmallVec<[u32; 16]> = known.iter().map(|k| k.0).filter(|&x| x != start).collect();
+        let (mut x, mut steps) = (start, 0);
         while !wanted.is_empty() {
             // The previous dart ends at the vertex; turn around its edge to the next face
-            // that no volume is 3-sewn to.
-            let mut t = b(b(x, 0), 2);
-            while t != 0 && b(t, 3) != 0 && steps < MAX_STEPS {
-                t = b(b(t, 3), 2);
-                steps += 1;
-            }
-            if t == 0 || t == start || steps >= MAX_STEPS {
+            // that no volume is 3-sewn to (a step read already, or read now).
+            let step = known.iter().find(|k| k.0 == x).map_or_else(|| self.fan_step(x), |k| k.1);
+            steps += step.hops as usize;
+            if step.to == 0 || step.to == start || steps >= FanStep::MAX_HOPS as usize {
                 return false;
             }
-            wanted.retain(|&mut y| y != t);
-            x = t;
-            steps += 1;
+            wanted.retain(|&mut y| y != step.to);
+            x = step.to;
         }
         true
+    }
+
+    /// From the 3-free dart `x`, the next 3-free dart with the same origin around it:
+    /// turn around the edge that ends there, through the volumes 3-sewn there.
+    fn fan_step(&self, x: u32) -> FanStep {
+        let b = |x: u32, i: usize| self.beta_raw(x, i);
+        let mut to = b(b(x, 0), 2);
+        let mut hops = 1;
+        while to != 0 && b(to, 3) != 0 && hops < FanStep::MAX_HOPS {
+            to = b(b(to, 3), 2);
+            hops += 1;
+        }
+        FanStep { to: if hops < FanStep::MAX_HOPS { to } else { 0 }, hops }
     }
 
     fn not_sewable(i: usize, d1: Dart, d2: Dart, why: &'static str) -> MapError {
@@ -326,4 +341,19 @@ impl CMap3 {
         self.split_vertex_ids(&touched);
         Ok(())
     }
+}
+
+/// One step of a walk around a vertex along the boundary ([`CMap3::fan_step`]).
+#[derive(Clone, Copy)]
+struct FanStep {
+    /// The next 3-free dart (0: none, or too far).
+    to: u32,
+    /// The edges turned around on the way (each a read or two).
+    hops: u32,
+}
+
+impl FanStep {
+    const NONE: FanStep = FanStep { to: 0, hops: 0 };
+    /// Hops after which a walk is given up (far more than around a vertex of a mesh).
+    const MAX_HOPS: u32 = 1 << 12;
 }
