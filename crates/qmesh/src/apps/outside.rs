@@ -60,7 +60,13 @@ fn untouched_regions(root: &RootBox, cells: &[OctCell], touched: &[bool]) -> Vec
         .par_iter()
         .zip(touched)
         .with_min_len(1 << 10)
-        .map(|(&c, &t)| if t { [NONE; 6] } else { FACES.map(|d| neighbour(c, siblings.family(c), d)) })
+        .map(|(&c, &t)| {
+            if t {
+                return [NONE; 6];
+            }
+            let family = siblings.family(c);
+            FACES.map(|d| neighbour(c, family, d))
+        })
         .collect();
     let mut parent: Vec<u32> = (0..cells.len() as u32).collect();
     fn find(parent: &mut [u32], mut i: u32) -> u32 {
