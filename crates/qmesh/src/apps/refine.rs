@@ -74,12 +74,17 @@ pub(super) fn refine(
     r: &mut SubdivideReport,
 ) -> Result<Refined, MapError> {
     let t = Instant::now();
-    let before = on_cores(cells, |w, &(d, _)| read_cell(map, w, d));
     let flag = map.reserve_mark()?;
     let octants: Vec<OctCell> = cells.iter().flat_map(|&(_, c)| c.children()).collect();
     let child_level = i32::from(octants.first().map_or(0, |c| c.level));
-    let (faces, (touches, near)) = rayon::join(
-        || split_edges(map, &before, flag, child_level),
+    // The children's contact needs their octree cells only: it is tested while the
+    // cells are read and their edges split.
+    let ((before, faces), (touches, near)) = rayon::join(
+        || {
+            let before = on_cores(cells, |w, &(d, _)| read_cell(map, w, d));
+            let faces = split_edges(map, &before, flag, child_level);
+            (before, faces)
+        },
         || contacts(contact.root, contact.surface, &octants, contact.near, contact.next_parents),
     );
     r.phases.split_edges += t.elapsed().as_secs_f64();

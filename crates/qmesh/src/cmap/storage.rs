@@ -250,15 +250,15 @@ impl CMap3 {
         self.free_darts.truncate(keep);
         let first = self.betas.len();
         assert!(first + fresh < u32::MAX as usize, "too many darts for u32 indices");
-        extend_on_cores(&mut self.betas, [0; 4], fresh);
-        extend_on_cores(&mut self.vertex, DEAD, fresh);
+        extend_on_cores(&mut self.betas, fresh, |_| [0; 4]);
+        extend_on_cores(&mut self.vertex, fresh, |_| DEAD);
         if !self.marks.is_empty() {
-            extend_on_cores(&mut self.marks, 0, fresh);
+            extend_on_cores(&mut self.marks, fresh, |_| 0);
         }
         if let Some(l) = &mut self.labels {
-            extend_on_cores(l, 0, fresh);
+            extend_on_cores(l, fresh, |_| 0);
         }
-        out.extend((first..first + fresh).map(|i| Dart::from_raw(i as u32).expect("index 0 is never reserved")));
+        extend_on_cores(out, fresh, |k| Dart::from_raw((first + k) as u32).expect("index 0 is never reserved"));
     }
 
     /// Low-level unlink, no checks: frees βi(d) and the reverse pointer of its partner.
@@ -464,13 +464,13 @@ impl CMap3 {
     }
 }
 
-/// Appends `n` copies of `value` to `v`, written on all cores when there are many: the
-/// first writes into a grown table fault its pages in, which the kernel serves on
+/// Appends `item(0) .. item(n - 1)` to `v`, written on all cores when there are many:
+/// the first writes into a grown table fault its pages in, which the kernel serves on
 /// every core at once.
-fn extend_on_cores<T: Copy + Send + Sync>(v: &mut Vec<T>, value: T, n: usize) {
+fn extend_on_cores<T: Send>(v: &mut Vec<T>, n: usize, item: impl Fn(usize) -> T + Sync + Send) {
     if n < 1 << 12 {
-        v.resize(v.len() + n, value);
+        v.extend((0..n).map(item));
     } else {
-        v.par_extend(rayon::iter::repeat_n(value, n));
+        v.par_extend((0..n).into_par_iter().map(item));
     }
 }
