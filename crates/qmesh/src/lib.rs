@@ -8,6 +8,7 @@
 pub mod apps;
 pub mod build;
 pub mod cmap;
+mod disjoint_sets;
 pub mod generate;
 pub mod geom;
 pub mod io;

@@ -14,6 +14,7 @@ use rustc_hash::FxHashMap;
 use super::cube::{corner, edge_index, faces, rotations};
 use crate::build::{BuildOptions, CellKind, IndexedMesh, build_map};
 use crate::cmap::{CMap3, Dart};
+use crate::disjoint_sets::DisjointSets;
 use crate::pattern::{FlagRule, PatternSet, pattern_from_map};
 use std::path::PathBuf;
 
@@ -73,21 +74,14 @@ pub(crate) fn face_pieces(cycle: [u8; 4], inside: u8) -> Vec<Vec<Node>> {
 fn volume_regions(inside: u8) -> Vec<Vec<Vec<Node>>> {
     let pieces: Vec<Vec<Node>> = faces().iter().flat_map(|&f| face_pieces(f, inside)).collect();
     // Regions: corners joined when they share a piece.
-    let mut parent: [u8; 8] = std::array::from_fn(|c| c as u8);
-    fn find(p: &mut [u8; 8], mut c: u8) -> u8 {
-        while p[c as usize] != c {
-            c = p[c as usize];
-        }
-        c
-    }
+    let mut corners = DisjointSets::new(8);
     for piece in &pieces {
         let cs: Vec<u8> = piece.iter().copied().filter(|&n| n < 8).collect();
         for w in cs.windows(2) {
-            let (a, b) = (find(&mut parent, w[0]), find(&mut parent, w[1]));
-            parent[a.max(b) as usize] = a.min(b);
+            corners.union(u32::from(w[0]), u32::from(w[1]));
         }
     }
-    let mut regions: Vec<u8> = (0..8).map(|c| find(&mut parent, c)).collect();
+    let mut regions: Vec<u8> = (0..8).map(|c| corners.find(c) as u8).collect();
     regions.sort_unstable();
     regions.dedup();
     regions
@@ -96,7 +90,7 @@ fn volume_regions(inside: u8) -> Vec<Vec<Vec<Node>>> {
             let mut faces: Vec<Vec<Node>> = Vec::new();
             // Chords reversed: the region's surface polygons run against its pieces.
             let mut next: FxHashMap<Node, Node> = FxHashMap::default();
-            for piece in pieces.iter().filter(|p| p.iter().any(|&n| n < 8 && find(&mut parent, n) == r)) {
+            for piece in pieces.iter().filter(|p| p.iter().any(|&n| n < 8 && corners.find(u32::from(n)) as u8 == r)) {
                 faces.push(piece.clone());
                 for i in 0..piece.len() {
                     let (p, q) = (piece[i], piece[(i + 1) % piece.len()]);

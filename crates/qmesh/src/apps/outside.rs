@@ -6,6 +6,7 @@ use rayon::prelude::*;
 use rustc_hash::FxHashMap;
 
 use super::octree::{OctCell, RootBox};
+use crate::disjoint_sets::SharedDisjointSets;
 use crate::geom::TriangleBvh;
 
 /// No cell in a sibling slot.
@@ -54,35 +55,20 @@ fn untouched_regions(root: &RootBox, cells: &[OctCell], touched: &[bool]) -> Vec
         }
     };
     const FACES: [[i64; 3]; 6] = [[-1, 0, 0], [1, 0, 0], [0, -1, 0], [0, 1, 0], [0, 0, -1], [0, 0, 1]];
-    // The neighbours are looked up on all cores, then joined in order (the same sets
-    // whatever the number of threads).
-    let neighbours: Vec<[u32; 6]> = cells
-        .par_iter()
-        .zip(touched)
-        .with_min_len(1 << 10)
-        .map(|(&c, &t)| {
-            if t {
-                return [NONE; 6];
+    // Face neighbours are joined on all cores: a region is named by its first cell
+    // whatever the order of the unions.
+    let regions = SharedDisjointSets::new(cells.len());
+    (0..cells.len()).into_par_iter().with_min_len(1 << 10).filter(|&k| !touched[k]).for_each(|k| {
+        let c = cells[k];
+        let family = siblings.family(c);
+        for d in FACES {
+            let j = neighbour(c, family, d);
+            if j != NONE {
+                regions.union(k as u32, j);
             }
-            let family = siblings.family(c);
-            FACES.map(|d| neighbour(c, family, d))
-        })
-        .collect();
-    let mut parent: Vec<u32> = (0..cells.len() as u32).collect();
-    fn find(parent: &mut [u32], mut i: u32) -> u32 {
-        while parent[i as usize] != i {
-            parent[i as usize] = parent[parent[i as usize] as usize];
-            i = parent[i as usize];
         }
-        i
-    }
-    for (k, around) in neighbours.iter().enumerate() {
-        for &j in around.iter().filter(|&&j| j != NONE) {
-            let (a, b) = (find(&mut parent, k as u32), find(&mut parent, j));
-            parent[a.max(b) as usize] = a.min(b);
-        }
-    }
-    (0..cells.len() as u32).map(|k| find(&mut parent, k)).collect()
+    });
+    (0..cells.len() as u32).into_par_iter().with_min_len(1 << 12).map(|k| regions.find(k)).collect()
 }
 
 /// Cells by their parent: each parent's children's indices, by octant. A refinement

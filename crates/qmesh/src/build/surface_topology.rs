@@ -7,6 +7,7 @@ use super::half_edges::HalfEdges;
 use super::indexed::IndexedMesh;
 #[cfg(doc)]
 use super::surface::build_surface_map;
+use crate::disjoint_sets::DisjointSets;
 
 /// Open edges and Euler characteristic of a surface.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -39,21 +40,20 @@ pub fn surface_topology(mesh: &IndexedMesh) -> Option<SurfaceTopology> {
     // A vertex is as many vertices of the map as fans of corners around it: corner c
     // (v → w) and the corner after its opposite (w → v) are consecutive in v's fan.
     let (mut corners, mut paired, mut vertices) = (0usize, 0usize, 0usize);
-    let mut parent: Vec<usize> = Vec::new();
+    let mut fans_of = DisjointSets::new(0);
     for v in 0..mesh.points.len() as u32 {
         let at = half.at(v);
         if at.iter().any(|&c| at.iter().filter(|&&x| target(x) == target(c)).count() > 1) {
             return None;
         }
         corners += at.len();
-        parent.clear();
-        parent.extend(0..at.len());
+        fans_of.reset(at.len());
         let mut fans = at.len();
         for (i, &c) in at.iter().enumerate() {
             let Some(t) = half.find(conn, target(c), v) else { continue };
             paired += 1;
             let j = at.iter().position(|&x| x == half.next(t)).expect("the corner after an opposite is at v");
-            if union(&mut parent, i, j) {
+            if fans_of.union(i as u32, j as u32) {
                 fans -= 1;
             }
         }
@@ -62,22 +62,4 @@ pub fn surface_topology(mesh: &IndexedMesh) -> Option<SurfaceTopology> {
     let open = corners - paired;
     let (e, f) = (paired / 2 + open, half.polygons);
     Some(SurfaceTopology { open_edges: open, euler_characteristic: vertices as i64 - e as i64 + f as i64 })
-}
-
-/// Joins the sets of `a` and `b`; whether they were apart.
-fn union(parent: &mut [usize], a: usize, b: usize) -> bool {
-    let (ra, rb) = (root(parent, a), root(parent, b));
-    if ra == rb {
-        return false;
-    }
-    parent[ra.max(rb)] = ra.min(rb);
-    true
-}
-
-fn root(parent: &mut [usize], mut x: usize) -> usize {
-    while parent[x] != x {
-        parent[x] = parent[parent[x]];
-        x = parent[x];
-    }
-    x
 }

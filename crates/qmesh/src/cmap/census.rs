@@ -23,6 +23,7 @@ use super::counts::{CellCounts, Census};
 use super::dart::Dart;
 use super::orbit::{Orbit, walk_orbit};
 use super::storage::{CMap3, DEAD};
+use crate::disjoint_sets::DisjointSets;
 
 /// Dart ranges of pass A per thread.
 const RANGES_PER_THREAD: usize = 4;
@@ -291,23 +292,12 @@ impl CMap3 {
 /// link and no dart touch are not counted: callers pass every vertex through a link or
 /// count isolated ones themselves).
 fn components(ids: usize, links: &[(u32, u32)]) -> usize {
-    let mut parent: Vec<u32> = (0..ids as u32).collect();
+    let mut sets = DisjointSets::new(ids);
     let mut used = vec![false; ids];
-    fn root(parent: &mut [u32], mut a: u32) -> u32 {
-        while parent[a as usize] != a {
-            let up = parent[parent[a as usize] as usize];
-            parent[a as usize] = up;
-            a = up;
-        }
-        a
-    }
     for &(a, b) in links {
         used[a as usize] = true;
         used[b as usize] = true;
-        let (ra, rb) = (root(&mut parent, a), root(&mut parent, b));
-        if ra != rb {
-            parent[ra.max(rb) as usize] = ra.min(rb);
-        }
+        sets.union(a, b);
     }
-    (0..ids as u32).filter(|&v| used[v as usize] && root(&mut parent, v) == v).count()
+    (0..ids as u32).filter(|&v| used[v as usize] && sets.find(v) == v).count()
 }

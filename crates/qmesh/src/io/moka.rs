@@ -7,6 +7,7 @@ use std::path::Path;
 use super::error::{IoError, IoResult};
 use super::lexer::{Lexer, clip};
 use crate::cmap::{CMap3, Dart};
+use crate::disjoint_sets::DisjointSets;
 
 struct GDart {
     alpha: [u32; 4],
@@ -53,14 +54,6 @@ fn parse_gdarts(lx: &mut Lexer<'_>) -> IoResult<(Vec<GDart>, u8, u8)> {
         out.push(GDart { alpha, mark0, point });
     }
     Ok((out, mask0, used0))
-}
-
-fn find(parent: &mut [u32], mut x: u32) -> u32 {
-    while parent[x as usize] != x {
-        parent[x as usize] = parent[parent[x as usize] as usize];
-        x = parent[x as usize];
-    }
-    x
 }
 
 /// Reads a `.moka` file as a combinatorial map (one orientation class per component).
@@ -128,20 +121,17 @@ pub fn read_with_flags(path: &Path, data: &[u8]) -> IoResult<(CMap3, Vec<Dart>)>
         }
     }
     // Vertex orbits ⟨α1, α2, α3⟩.
-    let mut parent: Vec<u32> = (0..n as u32).collect();
+    let mut orbits = DisjointSets::new(n);
     for (k, d) in g.iter().enumerate() {
         for i in 1..4 {
-            let (a, b) = (find(&mut parent, k as u32), find(&mut parent, d.alpha[i]));
-            if a != b {
-                parent[a as usize] = b;
-            }
+            orbits.union(k as u32, d.alpha[i]);
         }
     }
     let mut map = CMap3::with_capacity(n / 2, n / 8);
     let mut vid = vec![u32::MAX; n];
     for (k, d) in g.iter().enumerate() {
         if let Some(p) = d.point {
-            let r = find(&mut parent, k as u32) as usize;
+            let r = orbits.find(k as u32) as usize;
             if vid[r] == u32::MAX {
                 vid[r] = map.add_vertex(p);
             }
@@ -150,7 +140,7 @@ pub fn read_with_flags(path: &Path, data: &[u8]) -> IoResult<(CMap3, Vec<Dart>)>
     let mut dart_of = vec![0u32; n];
     for k in 0..n {
         if class[k] == 1 {
-            let r = find(&mut parent, k as u32) as usize;
+            let r = orbits.find(k as u32) as usize;
             if vid[r] == u32::MAX {
                 return Err(bad(format!("the vertex of g-dart {k} has no point")));
             }

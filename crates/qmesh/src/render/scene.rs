@@ -7,6 +7,7 @@ use std::time::Instant;
 use super::font::{draw_text, text_width};
 use super::raster::{Canvas, Rgb};
 use crate::build::{CellKind, CellValues, IndexedMesh, cell_scaled_jacobian};
+use crate::disjoint_sets::DisjointSets;
 use crate::geom::{Aabb, cross, dot, sub};
 
 /// What decides a cell's colour.
@@ -172,24 +173,16 @@ fn quality_legend(values: impl Iterator<Item = f64>) -> Vec<(Rgb, String)> {
 
 /// Connected components of cells sharing a vertex.
 fn components(mesh: &IndexedMesh) -> Vec<usize> {
-    let mut parent: Vec<usize> = (0..mesh.points.len()).collect();
-    fn find(p: &mut [usize], mut i: usize) -> usize {
-        while p[i] != i {
-            p[i] = p[p[i]];
-            i = p[i];
-        }
-        i
-    }
+    let mut sets = DisjointSets::new(mesh.points.len());
     let nodes = |i: usize| mesh.cell_faces(i).unwrap_or_default().into_iter().flatten().collect::<Vec<u32>>();
     for i in 0..mesh.nb_cells() {
         let v = nodes(i);
         for w in v.windows(2) {
-            let (a, b) = (find(&mut parent, w[0] as usize), find(&mut parent, w[1] as usize));
-            parent[a.max(b)] = a.min(b);
+            sets.union(w[0], w[1]);
         }
     }
     let mut ids: Vec<usize> =
-        (0..mesh.nb_cells()).map(|i| nodes(i).first().map_or(0, |&v| find(&mut parent, v as usize))).collect();
+        (0..mesh.nb_cells()).map(|i| nodes(i).first().map_or(0, |&v| sets.find(v) as usize)).collect();
     let mut distinct = ids.clone();
     distinct.sort_unstable();
     distinct.dedup();
