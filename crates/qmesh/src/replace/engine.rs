@@ -2,13 +2,13 @@
 //! every face matching an f-pattern, then every volume matching a v-pattern. Each cell
 //! is replaced at most once, so the result does not depend on the order.
 
-use std::sync::OnceLock;
 use std::time::Instant;
 
 use super::face::align_face;
 use super::lookup_memo;
+use super::plans::Plans;
 use crate::cmap::{CMap3, Dart, MapError, Orbit};
-use crate::modify::{DisjointExecutor, FacePattern, VolumePattern};
+use crate::modify::{DisjointExecutor, FacePattern};
 use crate::pattern::{FlagRule, PatternKind, PatternSet, flag_corners_on};
 use rayon::prelude::*;
 use rustc_hash::FxHashMap;
@@ -162,8 +162,8 @@ pub fn replace_cells(
     let has = |k: PatternKind| set.count(k) > 0;
     if has(PatternKind::Face) {
         // Each pattern's plans are made once, when it first matches (on any core).
-        let plans: Vec<OnceLock<Option<FacePattern>>> = set.patterns.iter().map(|_| OnceLock::new()).collect();
-        let plan = |i: usize| plans[i].get_or_init(|| FacePattern::new(&set.patterns[i])).as_ref();
+        let plans = Plans::of(set);
+        let plan = |i: usize| plans.face(set, i);
         let mut executor = DisjointExecutor::reuse();
         for chunk in faces.chunks(LOOKUP_CHUNK) {
             let t = Instant::now();
@@ -194,8 +194,8 @@ pub fn replace_cells(
         executor.recycle();
     }
     if has(PatternKind::Volume) {
-        let plans: Vec<OnceLock<Option<VolumePattern>>> = set.patterns.iter().map(|_| OnceLock::new()).collect();
-        let plan = |i: usize| plans[i].get_or_init(|| VolumePattern::new(&set.patterns[i])).as_ref();
+        let plans = Plans::of(set);
+        let plan = |i: usize| plans.volume(set, i);
         let mut executor = DisjointExecutor::reuse();
         for (c, chunk) in volumes.chunks(LOOKUP_CHUNK).enumerate() {
             let t = Instant::now();

@@ -4,6 +4,7 @@
 mod engine;
 mod face;
 mod lookup_memo;
+mod plans;
 mod volume;
 
 pub use engine::{
