@@ -58,6 +58,9 @@ enum Command {
     Demo(cmd::demo::Args),
 }
 
+/// The stack of each worker thread: Linux's default for a main thread.
+const MAIN_STACK_BYTES: usize = 8 << 20;
+
 fn main() -> ExitCode {
     // Like other Unix tools, end quietly when the reader of stdout goes away
     // (`qmesh info x.vtk | head`) instead of panicking on the broken pipe.
@@ -88,7 +91,15 @@ fn main() -> ExitCode {
             libc::mallopt(libc::M_ARENA_MAX, 1);
         }
     }
-    let result = match cli.command {
+    // Every command runs on a worker of rayon's pool, so that its parallel steps are
+    // handed to the other workers directly instead of each putting this thread to sleep
+    // until a worker has run it (a subdivision makes hundreds of such steps). Workers
+    // get the main thread's stack size, as the commands ran here before.
+    if let Err(e) = rayon::ThreadPoolBuilder::new().stack_size(MAIN_STACK_BYTES).build_global() {
+        eprintln!("error: cannot start the worker threads: {e}");
+        return ExitCode::from(2);
+    }
+    let result = rayon::scope(|_| match cli.command {
         Command::Info(a) => cmd::info::run(a),
         Command::Validate(a) => cmd::validate::run(a),
         Command::Convert(a) => cmd::convert::run(a),
@@ -106,7 +117,7 @@ fn main() -> ExitCode {
         Command::Recombine(a) => cmd::recombine::run(a),
         Command::MarchingCubes(a) => cmd::marching_cubes::run(a),
         Command::Render(a) => cmd::render::run(a),
-    };
+    });
     match result {
         Ok(code) => code,
         Err(e) => {

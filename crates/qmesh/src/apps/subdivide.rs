@@ -130,7 +130,21 @@ pub fn subdivide(
     surface: &TriangleBvh,
     opts: &SubdivideOptions,
     patterns: Option<&PatternSet>,
-    progress: &dyn Fn(u8),
+    progress: &(dyn Fn(u8) + Sync),
+) -> Result<Subdivision, MapError> {
+    // Run on a worker of rayon's pool: each level's dozens of parallel steps (a fraction
+    // of a millisecond each at the first levels) are then handed to the other workers
+    // directly, instead of each putting the calling thread to sleep until a worker has
+    // run it (fertility at level 6, 16 alternating runs: 0.058 -> 0.051 s on 1 thread,
+    // 0.037 -> 0.035 s on 2).
+    rayon::scope(|_| subdivide_on_pool(surface, opts, patterns, progress))
+}
+
+fn subdivide_on_pool(
+    surface: &TriangleBvh,
+    opts: &SubdivideOptions,
+    patterns: Option<&PatternSet>,
+    progress: &(dyn Fn(u8) + Sync),
 ) -> Result<Subdivision, MapError> {
     let t = Instant::now();
     let start = initial_tree(surface, opts.root, opts.margin);
