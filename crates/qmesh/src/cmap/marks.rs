@@ -102,7 +102,7 @@ impl CMap3 {
     fn mark_table(&mut self) -> &mut Vec<u32> {
         if self.marks.is_empty() {
             self.marks = vec![0; self.betas.len()];
-            super::huge_pages::advise_huge_pages(&self.marks);
+            super::page_backing::advise_huge_pages(&self.marks);
         }
         &mut self.marks
     }
