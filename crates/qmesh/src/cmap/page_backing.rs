@@ -27,7 +27,7 @@ pub(super) fn advise_huge_pages<T>(v: &Vec<T>) {
     let start = first.next_multiple_of(HUGE_PAGE);
     let end = (first + bytes) / HUGE_PAGE * HUGE_PAGE;
     if end > start {
-        madvise_huge(start, end - start);
+        advise(start, end - start, Advice::HugePages);
     }
 }
 
@@ -50,35 +50,32 @@ pub(super) fn populate_spare<T>(v: &Vec<T>, n: usize) {
     let start = first.next_multiple_of(PAGE);
     let end = (first + bytes) / PAGE * PAGE;
     if end > start {
-        madvise_populate(start, end - start);
+        advise(start, end - start, Advice::Populate);
     }
+}
+
+/// What the kernel is asked for a range of pages.
+#[derive(Clone, Copy)]
+enum Advice {
+    HugePages,
+    Populate,
 }
 
 #[cfg(target_os = "linux")]
 #[allow(unsafe_code)]
-fn madvise_populate(start: usize, len: usize) {
-    // SAFETY: [start, start + len) lies inside the spare capacity of the caller's Vec,
-    // memory it owns; MADV_POPULATE_WRITE backs those pages as a write fault would,
-    // never changing their contents, and a failure (EINVAL before Linux 5.14) is
-    // harmless.
-    unsafe {
-        libc::madvise(start as *mut libc::c_void, len, libc::MADV_POPULATE_WRITE);
-    }
-}
-
-#[cfg(not(target_os = "linux"))]
-fn madvise_populate(_start: usize, _len: usize) {}
-
-#[cfg(target_os = "linux")]
-#[allow(unsafe_code)]
-fn madvise_huge(start: usize, len: usize) {
+fn advise(start: usize, len: usize, advice: Advice) {
+    let advice = match advice {
+        Advice::HugePages => libc::MADV_HUGEPAGE,
+        Advice::Populate => libc::MADV_POPULATE_WRITE,
+    };
     // SAFETY: [start, start + len) lies inside one live allocation owned by the caller's
-    // Vec; MADV_HUGEPAGE only changes how the kernel backs those pages, never their
-    // contents, and a failure (EINVAL when THP is off) is harmless.
+    // Vec; MADV_HUGEPAGE only changes how the kernel backs those pages and
+    // MADV_POPULATE_WRITE backs them as a write fault would, never changing their
+    // contents; a failure (EINVAL when THP is off or before Linux 5.14) is harmless.
     unsafe {
-        libc::madvise(start as *mut libc::c_void, len, libc::MADV_HUGEPAGE);
+        libc::madvise(start as *mut libc::c_void, len, advice);
     }
 }
 
 #[cfg(not(target_os = "linux"))]
-fn madvise_huge(_start: usize, _len: usize) {}
+fn advise(_start: usize, _len: usize, _advice: Advice) {}
