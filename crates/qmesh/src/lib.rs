@@ -6,6 +6,7 @@
 #![warn(missing_debug_implementations)]
 
 pub mod apps;
+pub mod awake_pool;
 pub mod build;
 pub mod cmap;
 mod disjoint_sets;
