@@ -2,8 +2,9 @@
 //! cells' whole edges are split in two, the darts at their corners flagged, then their
 //! faces and volumes query-replaced. What each cell needs is read on all cores; the
 //! edges are split on one thread in the cells' order, so the map is the same whatever
-//! the number of threads. From the reads on, the other cores test the surface's
-//! contact with the children-to-be (their octree cells are known before they exist).
+//! the number of threads. From the reads to the last replacement, the other cores test
+//! the surface's contact with the children-to-be (their octree cells are known before
+//! they exist).
 
 use std::time::Instant;
 
@@ -86,26 +87,31 @@ pub(super) fn refine(
     let octants: Vec<OctCell> = cells.iter().flat_map(|&(_, c)| c.children()).collect();
     let child_level = i32::from(octants.first().map_or(0, |c| c.level));
     // The children's contact needs their octree cells only: it is tested while the
-    // cells are read and their edges split.
-    let ((before, faces), (touches, near)) = rayon::join(
+    // cells are read, their edges split and their faces and volumes replaced, so that
+    // the steps of these with little to share out (the edge splits, each batch's
+    // bookkeeping, the few cells of the first levels) leave the other cores to it.
+    let ((before, rep, split_at, replaced_at), (touches, near)) = rayon::join(
         || {
             let before = on_cores(cells, |w, &(d, _)| read_cell(map, w, d));
             let faces = split_edges(map, &before, flag, child_level);
-            (before, faces)
+            let split_at = t.elapsed().as_secs_f64();
+            // Each volume named by a flagged corner dart: in a cube's configuration every
+            // one is a start of its signature, so the lookup's traversal is also the
+            // replacement's.
+            let volumes: Vec<Dart> = before.iter().map(|c| c.corners.first().copied().unwrap_or(c.darts[0])).collect();
+            let rep = replace_cells(map, set, Flags::Mark(flag), &faces, &volumes, use_signatures);
+            (before, rep, split_at, t.elapsed().as_secs_f64())
         },
         || contacts(contact.root, contact.surface, &octants, contact.near, contact.next_parents),
     );
-    r.phases.split_edges += t.elapsed().as_secs_f64();
-    let t = Instant::now();
-    // Each volume named by a flagged corner dart: in a cube's configuration every one
-    // is a start of its signature, so the lookup's traversal is also the replacement's.
-    let volumes: Vec<Dart> = before.iter().map(|c| c.corners.first().copied().unwrap_or(c.darts[0])).collect();
-    let rep = replace_cells(map, set, Flags::Mark(flag), &faces, &volumes, use_signatures);
     map.free_mark(flag);
     r.faces_replaced += rep.faces_replaced;
     r.volumes_replaced += rep.volumes_replaced;
+    r.phases.split_edges += split_at;
     r.phases.lookup += rep.query_seconds;
-    r.phases.apply += t.elapsed().as_secs_f64() - rep.query_seconds;
+    r.phases.apply += replaced_at - split_at - rep.query_seconds;
+    // The contact tests' time beyond the replacements.
+    r.phases.contact += t.elapsed().as_secs_f64() - replaced_at;
     // Each child's octant of its parent's box names its octree cell and contact.
     let t = Instant::now();
     let from = &rep.created_from;

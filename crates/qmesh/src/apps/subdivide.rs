@@ -89,8 +89,9 @@ pub struct SubdivideReport {
 pub struct SubdividePhases {
     /// Building the level-0 map.
     pub start: f64,
-    /// The level-0 cells' contact with the surface, and which octant of its parent each
-    /// new cell is (the children's contact is tested during `split_edges`).
+    /// The level-0 cells' contact with the surface, which octant of its parent each new
+    /// cell is, and the children's contact tests beyond the time of the edge splits and
+    /// replacements they run beside (all of it on one thread).
     pub contact: f64,
     /// Finding the cells outside the surface and removing them (the last level's are
     /// removed during `finish`).
@@ -99,7 +100,8 @@ pub struct SubdividePhases {
     /// the time of the removal they run beside.
     pub balance: f64,
     /// Splitting the cells' edges, flagging their corners, listing their faces, while
-    /// the other cores test the surface's contact with the children-to-be.
+    /// the other cores test the surface's contact with the children-to-be (as they do
+    /// during `lookup` and `apply`).
     pub split_edges: f64,
     /// Looking the faces' and volumes' patterns up (on all cores).
     pub lookup: f64,
