@@ -19,20 +19,39 @@ const NONE: u32 = u32::MAX;
 /// centre of its first cell in the order of `cells`. A neighbour is looked for at its
 /// own size and then coarser, down to the coarsest level among `cells`.
 pub fn outside_among(root: &RootBox, cells: &[OctCell], touched: &[bool], surface: &TriangleBvh) -> Vec<usize> {
-    let regions = untouched_regions(root, cells, touched);
-    // One winding number per region (at its root, its first cell), on all cores.
-    let roots: Vec<u32> =
-        (0..cells.len() as u32).filter(|&k| !touched[k as usize] && regions[k as usize] == k).collect();
+    outside_in_regions(root, cells, touched, &untouched_regions(root, cells, touched), surface)
+}
+
+/// [`outside_among`] with the regions found beforehand: `regions[i]` names the region
+/// of cell i, by any number below `cells.len()` that no other region has (such as
+/// [`untouched_regions`] of the same cells in another order).
+pub(super) fn outside_in_regions(
+    root: &RootBox,
+    cells: &[OctCell],
+    touched: &[bool],
+    regions: &[u32],
+    surface: &TriangleBvh,
+) -> Vec<usize> {
+    // Each region's first cell, where its winding number is taken (on all cores).
+    let mut first = vec![NONE; cells.len()];
+    let mut roots: Vec<u32> = Vec::new();
+    for k in (0..cells.len()).filter(|&k| !touched[k]) {
+        let f = &mut first[regions[k] as usize];
+        if *f == NONE {
+            *f = k as u32;
+            roots.push(k as u32);
+        }
+    }
     let root_inside: Vec<bool> =
         roots.par_iter().map(|&r| surface.contains(root.cell_box(cells[r as usize]).centre())).collect();
     let mut inside = vec![true; cells.len()];
     roots.iter().zip(root_inside).for_each(|(&r, i)| inside[r as usize] = i);
-    (0..cells.len()).filter(|&k| !touched[k] && !inside[regions[k] as usize]).collect()
+    (0..cells.len()).filter(|&k| !touched[k] && !inside[first[regions[k] as usize] as usize]).collect()
 }
 
 /// For each of the `cells`, the first cell (in their order) of its face-connected
 /// region of untouched cells (a touched cell is its own).
-fn untouched_regions(root: &RootBox, cells: &[OctCell], touched: &[bool]) -> Vec<u32> {
+pub(super) fn untouched_regions(root: &RootBox, cells: &[OctCell], touched: &[bool]) -> Vec<u32> {
     let siblings = Siblings::of(cells);
     let coarsest = cells.iter().map(|c| c.level).min().unwrap_or(0);
     // The untouched face neighbour (as large or larger) of cell c towards d, if any;
@@ -135,22 +154,17 @@ mod tests {
 
     /// An outward-oriented octahedron: the points at L1 distance `r` from `c`.
     fn octahedron(c: [f64; 3], r: f64) -> TriangleBvh {
+        TriangleBvh::new(octahedron_triangles(c, r))
+    }
+
+    fn octahedron_triangles(c: [f64; 3], r: f64) -> Vec<[[f64; 3]; 3]> {
         let at = |k: usize, s: f64| {
             let mut p = c;
             p[k] += s * r;
             p
         };
         let (x, y, z, nx, ny, nz) = (at(0, 1.0), at(1, 1.0), at(2, 1.0), at(0, -1.0), at(1, -1.0), at(2, -1.0));
-        TriangleBvh::new(vec![
-            [x, y, z],
-            [y, nx, z],
-            [nx, ny, z],
-            [ny, x, z],
-            [y, x, nz],
-            [nx, y, nz],
-            [ny, nx, nz],
-            [x, ny, nz],
-        ])
+        vec![[x, y, z], [y, nx, z], [nx, ny, z], [ny, x, z], [y, x, nz], [nx, y, nz], [ny, nx, nz], [x, ny, nz]]
     }
 
     #[test]
@@ -176,6 +190,38 @@ mod tests {
             assert_eq!(found, expected);
             let inside = (0..cells.len()).filter(|&i| !touched[i]).count() - found.len();
             assert!(found.len() > 8 && inside > 0, "{} outside, {inside} inside", found.len());
+        }
+    }
+
+    /// Regions found on the cells in another order (named by that order's first cells)
+    /// decide as those found in the cells' own order, on a closed surface and on one
+    /// with a hole, where the region inside joins the one outside and its decision
+    /// depends on where the winding number is taken: still at the region's first cell
+    /// in the cells' order.
+    #[test]
+    fn regions_found_in_another_order_decide_the_same() {
+        let root = RootBox { lo: [0.0; 3], cell: [1.0; 3], cells: [1; 3] };
+        let mut open = octahedron_triangles([0.5; 3], 0.45);
+        open.truncate(6);
+        // The cells from the centre outwards, and the other way.
+        let mut cells: Vec<OctCell> =
+            (0..4096u32).map(|i| OctCell { level: 4, ijk: [i % 16, i / 16 % 16, i / 256] }).collect();
+        let from_centre = |c: &OctCell| c.ijk.iter().map(|&x| (2 * i64::from(x) - 15).pow(2)).sum::<i64>();
+        cells.sort_by_key(from_centre);
+        let n = cells.len();
+        let reversed: Vec<OctCell> = cells.iter().rev().copied().collect();
+        for (surface, is_open) in [(octahedron([0.5; 3], 0.45), false), (TriangleBvh::new(open), true)] {
+            let touched: Vec<bool> = cells.iter().map(|&c| surface.intersects_box(&root.cell_box(c))).collect();
+            let reversed_touched: Vec<bool> = touched.iter().rev().copied().collect();
+            let found = untouched_regions(&root, &reversed, &reversed_touched);
+            let regions: Vec<u32> = (0..n).map(|i| found[n - 1 - i]).collect();
+            let outside = outside_in_regions(&root, &cells, &touched, &regions, &surface);
+            assert_eq!(outside, outside_among(&root, &cells, &touched, &surface));
+            // Where the winding number is taken decides, with the hole.
+            let mut other: Vec<usize> =
+                outside_among(&root, &reversed, &reversed_touched, &surface).iter().map(|&i| n - 1 - i).collect();
+            other.sort_unstable();
+            assert_eq!(outside == other, !is_open, "{} and {} outside", outside.len(), other.len());
         }
     }
 

@@ -14,6 +14,7 @@ use smallvec::SmallVec;
 use super::box_cells::{along_box_edge, child_box, is_corner};
 use super::contact::{FreshCell, NearLeaves, contacts};
 use super::octree::{OctCell, RootBox};
+use super::outside::untouched_regions;
 use super::subdivide::SubdivideReport;
 use crate::cmap::{BitSet, CMap3, Dart, MapError, Mark, Orbit, OrbitWalker};
 use crate::geom::{Aabb, TriangleBvh};
@@ -49,6 +50,7 @@ struct Scratch {
 }
 
 /// Where the children's contact with the surface is tested (see [`contacts`]).
+#[derive(Clone, Copy)]
 pub(super) struct ContactTest<'a> {
     pub root: RootBox,
     pub surface: &'a TriangleBvh,
@@ -56,6 +58,11 @@ pub(super) struct ContactTest<'a> {
     pub near: &'a NearLeaves,
     /// The level whose touched cells the next refinement splits (`None` after the last).
     pub next_parents: Option<u8>,
+    /// When the children are the last of their level to be made and the next level
+    /// drops the cells outside the surface: the level's earlier children, in order.
+    /// The untouched regions of those and these children are then found beside the
+    /// replacements (see [`outside_in_regions`](super::outside::outside_in_regions)).
+    pub regions_after: Option<&'a [FreshCell]>,
 }
 
 /// What [`refine`] made.
@@ -64,6 +71,11 @@ pub(super) struct Refined {
     pub children: Vec<FreshCell>,
     /// The leaves near the children the next refinement splits.
     pub near: NearLeaves,
+    /// With [`ContactTest::regions_after`]: the untouched regions of those cells then
+    /// `children`, in that order, named as
+    /// [`outside_in_regions`](super::outside::outside_in_regions) takes them (`None` if a
+    /// cell was left unreplaced, which leaves the regions to be found again).
+    pub regions: Option<Vec<u32>>,
 }
 
 /// Refines the volumes of `cells` (one dart and the octree cell of each, all of one
@@ -90,7 +102,7 @@ pub(super) fn refine(
     // cells are read, their edges split and their faces and volumes replaced, so that
     // the steps of these with little to share out (the edge splits, each batch's
     // bookkeeping, the few cells of the first levels) leave the other cores to it.
-    let ((before, rep, split_at, replaced_at), (touches, near)) = rayon::join(
+    let ((before, rep, split_at, replaced_at), (touches, near, regions)) = rayon::join(
         || {
             let before = on_cores(cells, |w, &(d, _)| read_cell(map, w, d));
             let faces = split_edges(map, &before, flag, child_level);
@@ -102,7 +114,17 @@ pub(super) fn refine(
             let rep = replace_cells(map, set, Flags::Mark(flag), &faces, &volumes, use_signatures);
             (before, rep, split_at, t.elapsed().as_secs_f64())
         },
-        || contacts(contact.root, contact.surface, &octants, contact.near, contact.next_parents),
+        || {
+            let (touches, near) = contacts(contact.root, contact.surface, &octants, contact.near, contact.next_parents);
+            // The children in the order of their octants, which the replacements' order
+            // (known later) permutes: the regions are the same, only their names differ.
+            let regions = contact.regions_after.map(|earlier| {
+                let cells: Vec<OctCell> = earlier.iter().map(|c| c.cell).chain(octants.iter().copied()).collect();
+                let touched: Vec<bool> = earlier.iter().map(|c| c.touches).chain(touches.iter().copied()).collect();
+                untouched_regions(&contact.root, &cells, &touched)
+            });
+            (touches, near, regions)
+        },
     );
     map.free_mark(flag);
     r.faces_replaced += rep.faces_replaced;
@@ -115,7 +137,7 @@ pub(super) fn refine(
     // Each child's octant of its parent's box names its octree cell and contact.
     let t = Instant::now();
     let from = &rep.created_from;
-    let children = rep
+    let (children, octant_of): (Vec<FreshCell>, Vec<usize>) = rep
         .created_volumes
         .par_iter()
         .zip(from)
@@ -123,11 +145,18 @@ pub(super) fn refine(
         .map_init(OrbitWalker::new, |w, (&(dart, _), &i)| {
             let parent = &before[i as usize].bbox;
             let k = 8 * i as usize + octant(parent, &child_box(map, dart, parent, w));
-            FreshCell { dart, cell: octants[k], touches: touches[k] }
+            (FreshCell { dart, cell: octants[k], touches: touches[k] }, k)
         })
-        .collect();
+        .unzip();
+    let regions = regions.filter(|_| children.len() == octants.len()).map(|mut found| {
+        let earlier = found.len() - octants.len();
+        let of_children: Vec<u32> = octant_of.iter().map(|&k| found[earlier + k]).collect();
+        found.truncate(earlier);
+        found.extend(of_children);
+        found
+    });
     r.phases.contact += t.elapsed().as_secs_f64();
-    Ok(Refined { children, near })
+    Ok(Refined { children, near, regions })
 }
 
 /// Labels the darts of the cells `before` with the children's level (the darts the

@@ -9,7 +9,7 @@ use super::box_cells::volume_box;
 use super::contact::{FreshCell, NearLeaves, fresh_cells};
 use super::generated_patterns::{GeneratedKind, given_or_generated};
 use super::octree::{OctCell, Octree, RootBox, coarser_neighbours};
-use super::outside::outside_among;
+use super::outside::{outside_among, outside_in_regions};
 use super::refine::{ContactTest, refine};
 use crate::build::{BuildOptions, IndexedMesh, build_map};
 use crate::cmap::{CMap3, Dart, MapError, Orbit, OrbitWalker};
@@ -94,7 +94,8 @@ pub struct SubdividePhases {
     /// replacements they run beside (all of it on one thread).
     pub contact: f64,
     /// Finding the cells outside the surface and removing them (the last level's are
-    /// removed during `finish`).
+    /// removed during `finish`; the face-connected regions of a level's untouched
+    /// cells are found beside the replacements that made them, in `contact` if longer).
     pub remove_outside: f64,
     /// Registering a level's cells as leaves and finding the 2:1 balance closure, beyond
     /// the time of the removal they run beside.
@@ -281,6 +282,8 @@ fn subdivide_qr(
     // leaves of the surface's hierarchy near those the next level refines.
     let t = Instant::now();
     let (mut fresh, mut fresh_near) = fresh_cells(root, surface, &boxes, &NearLeaves::default(), parents_of(1));
+    // The untouched regions among `fresh`, when the last refinement found them.
+    let mut fresh_regions: Option<Vec<u32>> = None;
     r.phases.contact += t.elapsed().as_secs_f64();
     let mut level = 0;
     loop {
@@ -289,7 +292,7 @@ fn subdivide_qr(
         let mut outside = Vec::new();
         if opts.remove_outside {
             let t = Instant::now();
-            outside = take_outside(root, surface, &mut cells);
+            outside = take_outside(root, surface, &mut cells, fresh_regions.take());
             r.removed_outside += outside.len();
             r.phases.remove_outside += t.elapsed().as_secs_f64();
         }
@@ -329,15 +332,22 @@ fn subdivide_qr(
         r.phases.balance += t.elapsed().as_secs_f64() - removing;
         r.balance_splits += plan.len() - touched.len();
         plan.sort_unstable();
-        let contact = ContactTest { root, surface, near: &near, next_parents: parents_of(level + 1) };
-        for batch in plan.chunk_by(|a, b| a.0 == b.0) {
+        let contact =
+            ContactTest { root, surface, near: &near, next_parents: parents_of(level + 1), regions_after: None };
+        let batches: Vec<&[(i32, Dart, OctCell)]> = plan.chunk_by(|a, b| a.0 == b.0).collect();
+        for (b, batch) in batches.iter().enumerate() {
             let cells: Vec<(Dart, OctCell)> = batch.iter().map(|&(_, d, c)| (d, c)).collect();
+            // The last batch finds the next level's untouched regions beside its
+            // replacements.
+            let last = b + 1 == batches.len() && opts.remove_outside;
+            let contact = ContactTest { regions_after: last.then_some(&fresh[..]), ..contact };
             let refined = refine(&mut map, set, &cells, &contact, opts.use_signatures, &mut r)?;
             cells.iter().for_each(|(_, c)| {
                 leaves.remove(c);
             });
             fresh.extend(refined.children);
             fresh_near.append(refined.near);
+            fresh_regions = refined.regions;
         }
     }
 }
@@ -370,10 +380,19 @@ fn balance_closure(
 
 /// Removes from `cells` those outside `surface` that it does not touch; returns one dart
 /// of each, in the order of `cells`, for the caller to remove them from the map.
-fn take_outside(root: RootBox, surface: &TriangleBvh, cells: &mut Vec<FreshCell>) -> Vec<Dart> {
+/// `regions`: their untouched regions, if found already (see [`outside_in_regions`]).
+fn take_outside(
+    root: RootBox,
+    surface: &TriangleBvh,
+    cells: &mut Vec<FreshCell>,
+    regions: Option<Vec<u32>>,
+) -> Vec<Dart> {
     let octs: Vec<OctCell> = cells.iter().map(|c| c.cell).collect();
     let touches: Vec<bool> = cells.iter().map(|c| c.touches).collect();
-    let mut outside = outside_among(&root, &octs, &touches, surface);
+    let mut outside = match regions {
+        Some(regions) if regions.len() == cells.len() => outside_in_regions(&root, &octs, &touches, &regions, surface),
+        _ => outside_among(&root, &octs, &touches, surface),
+    };
     if outside.is_empty() {
         return Vec::new();
     }
