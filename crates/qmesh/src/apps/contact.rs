@@ -69,10 +69,11 @@ pub(super) fn contacts(
     next_parents: Option<u8>,
 ) -> (Vec<bool>, NearLeaves) {
     // Small runs, each a job of its own: the first levels have few cells, each tested
-    // against much of the surface, and the tests run beside the reads and edge splits,
-    // so the core that finishes those takes the runs not yet started (rayon cuts a range
-    // further only when another core steals it, and otherwise runs the rest of its half
-    // on the core that holds it). Armadillo L6, 20 alternating runs on 2 threads,
+    // against much of the surface, and the tests run beside a refinement's own steps
+    // (see `refine`), so the core that finishes those takes the runs not yet started
+    // (rayon cuts a range further only when another core steals it, and otherwise runs
+    // the rest of its half on the core that holds it). Armadillo L6, 20 alternating runs
+    // on 2 threads, when the tests ran beside the reads and edge splits only:
     // `split_edges` 14.0 -> 11.7 ms against 4 runs per thread, each not a job.
     let chunk = cells.len().div_ceil(16 * rayon::current_num_threads()).max(1);
     let runs: Vec<Run> = cells
