@@ -492,6 +492,18 @@ fn render_draws_shrunk_clipped_cells() {
     let (code, _, err) = qmesh(&["render", grid.to_str().unwrap(), "-o", png.to_str().unwrap(), "--clip", "w<3"]);
     assert_eq!(code, 2);
     assert!(err.contains("axis 'w'"), "{err}");
+    // A mesh in a file named .png (read with --format) is not drawn over without --force.
+    let named_png = temp("rg_mesh.png");
+    std::fs::copy(&grid, &named_png).unwrap();
+    let mesh_bytes = std::fs::read(&named_png).unwrap();
+    let n = named_png.to_str().unwrap();
+    let (code, _, err) = qmesh(&["render", n, "--format", "vtk", "-o", n]);
+    assert_eq!(code, 2);
+    assert!(err.contains("refusing to overwrite it (use --force)"), "{err}");
+    assert_eq!(std::fs::read(&named_png).unwrap(), mesh_bytes, "the input is left as it was");
+    let (code, _, err) = qmesh(&["render", n, "--format", "vtk", "-o", n, "--size", "64,48", "--force"]);
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(png_stats(&named_png).0, 64);
 }
 
 #[test]

@@ -27,6 +27,10 @@ pub struct Args {
     /// Output PNG.
     #[arg(short, long)]
     pub output: PathBuf,
+    /// Allow the output to be the input file (a mesh read with `--format` from a file
+    /// named .png).
+    #[arg(long)]
+    pub force: bool,
     /// Cells shrunk toward their centroid by this factor (1 = no gap).
     #[arg(long, default_value_t = 0.85)]
     pub shrink: f64,
@@ -111,6 +115,7 @@ pub fn run(a: Args) -> Result<ExitCode> {
     if a.output.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).as_deref() != Some("png") {
         bail!("{}: the output of render is a .png file", a.output.display());
     }
+    super::refuse_to_overwrite(&a.input, &a.output, a.force)?;
     if !(0.0..=1.0).contains(&a.shrink) {
         bail!("--shrink {} is outside [0, 1]", a.shrink);
     }
