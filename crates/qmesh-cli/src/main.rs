@@ -15,6 +15,9 @@ use clap::{Parser, Subcommand};
 struct Cli {
     #[command(subcommand)]
     command: Command,
+    /// Worker threads (default: RAYON_NUM_THREADS, else all cores).
+    #[arg(long, global = true)]
+    threads: Option<std::num::NonZeroUsize>,
 }
 
 #[derive(Subcommand, Debug)]
@@ -95,7 +98,11 @@ fn main() -> ExitCode {
     // handed to the other workers directly instead of each putting this thread to sleep
     // until a worker has run it (a subdivision makes hundreds of such steps). Workers
     // get the main thread's stack size, as the commands ran here before.
-    if let Err(e) = rayon::ThreadPoolBuilder::new().stack_size(MAIN_STACK_BYTES).build_global() {
+    let mut pool = rayon::ThreadPoolBuilder::new().stack_size(MAIN_STACK_BYTES);
+    if let Some(n) = cli.threads {
+        pool = pool.num_threads(n.get());
+    }
+    if let Err(e) = pool.build_global() {
         eprintln!("error: cannot start the worker threads: {e}");
         return ExitCode::from(2);
     }

@@ -575,3 +575,24 @@ fn tetrahedralize_then_recombine_gives_the_hexahedra_back() {
     assert_eq!(code, 2);
     assert!(err.contains("no hexahedron"), "{err}");
 }
+
+/// `--threads` sets the workers of every command, before or after the command's name,
+/// and gives the same result on 1 thread as on 3; 0 is refused in words.
+#[test]
+fn threads_are_set_for_any_command() {
+    let s = |p: &std::path::Path| p.to_str().unwrap().to_string();
+    let (grid, tets, one, three) = (temp("th_grid.mesh"), temp("th_tets.mesh"), temp("th_1.vtk"), temp("th_3.vtk"));
+    let (code, _, err) = qmesh(&["generate", "grid", "--size", "3,2,2", "-o", &s(&grid)]);
+    assert_eq!(code, 0, "{err}");
+    let (code, _, err) = qmesh(&["--threads", "2", "tetrahedralize", &s(&grid), "-o", &s(&tets), "--five"]);
+    assert_eq!(code, 0, "{err}");
+    for (threads, out) in [("1", &one), ("3", &three)] {
+        let j = json_of(&["recombine", &s(&tets), "-o", &s(out), "--threads", threads, "--json"]);
+        assert_eq!(j["threads"].to_string(), threads);
+        assert_eq!(j["recombine"]["hexes"], 12);
+    }
+    assert_eq!(std::fs::read(&one).unwrap(), std::fs::read(&three).unwrap());
+    let (code, _, err) = qmesh(&["subdivide", "--threads", "0", &s(&grid), "-o", &s(&one)]);
+    assert_eq!(code, 2);
+    assert!(err.contains("invalid value '0' for '--threads"), "{err}");
+}

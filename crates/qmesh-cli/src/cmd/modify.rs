@@ -10,7 +10,6 @@ use qmesh::io::{WriteOptions, load_map, write_map};
 use qmesh::modify::{load_rules, run_rules};
 use serde_json::json;
 
-use super::rules::set_threads;
 use super::{InputArgs, parse_format};
 
 #[derive(clap::Args, Debug)]
@@ -22,9 +21,6 @@ pub struct Args {
     /// The rule file (TOML, see `qmesh::modify` docs and examples/).
     #[arg(long)]
     pub rules: PathBuf,
-    /// Worker threads for the queries (default: all cores).
-    #[arg(long)]
-    pub threads: Option<usize>,
     #[command(flatten)]
     pub report: super::ReportArgs,
     /// Allow the output to be the input file.
@@ -34,7 +30,6 @@ pub struct Args {
 
 pub fn run(a: Args) -> Result<ExitCode> {
     super::refuse_to_overwrite(&a.input.input, &a.output, a.force)?;
-    set_threads(a.threads)?;
     let rules = load_rules(&a.rules)?;
     let opts = BuildOptions { fix_orientation: a.input.fix_orientation };
     let mut loaded = load_map(&a.input.input, parse_format(&a.input.format)?, &opts)?;

@@ -11,7 +11,7 @@ use qmesh::io::{WriteOptions, load_map, write_map_with_arrays};
 use qmesh::query::{MatchOptions, Metric, QuerySet, Separation, Strategy, find_matches, select, select_random_lazily};
 use serde_json::json;
 
-use super::rules::{QueryArgs, match_arrays, rules_of, set_threads};
+use super::rules::{QueryArgs, match_arrays, rules_of};
 use super::{InputArgs, parse_format};
 
 #[derive(clap::Args, Debug)]
@@ -51,7 +51,6 @@ pub fn run(a: Args) -> Result<ExitCode> {
     if let Some(o) = &a.output {
         super::refuse_to_overwrite(&a.input.input, o, a.force)?;
     }
-    set_threads(a.query.threads)?;
     let rules = rules_of(&a.rules, &a.query)?;
     let metric = a
         .metric

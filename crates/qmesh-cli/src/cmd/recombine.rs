@@ -35,9 +35,6 @@ pub struct Args {
     /// hexahedra in more time (HexMe torus: 0.25 → 18.8 % tets left, 1 → 15.4 %).
     #[arg(long, default_value_t = 0.25)]
     pub repair_effort: f64,
-    /// Worker threads for matching (default: all cores).
-    #[arg(long)]
-    pub threads: Option<usize>,
     #[command(flatten)]
     pub report: super::ReportArgs,
 }
@@ -45,7 +42,6 @@ pub struct Args {
 pub fn run(a: Args) -> Result<ExitCode> {
     let start = Instant::now();
     a.output.check_against(&a.input.input)?;
-    super::rules::set_threads(a.threads)?;
     let out_format = resolve_format(&a.output.output, None)?;
     let strategy = match a.strategy.as_str() {
         "best" => Strategy::Best,

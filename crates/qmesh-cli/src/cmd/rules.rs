@@ -1,5 +1,5 @@
-//! What `query` and `modify` share: rules from a TOML file or a single query mesh, the
-//! thread count, and the match-coloured output mesh.
+//! What `query` and `modify` share: rules from a TOML file or a single query mesh, and
+//! the match-coloured output mesh.
 
 use std::path::Path;
 
@@ -26,18 +26,6 @@ pub struct QueryArgs {
     /// from the centroid, 0..1 whatever the units (0.01: 1 % off an affine copy).
     #[arg(long)]
     pub max_residual: Option<f64>,
-    /// Worker threads (default: all cores).
-    #[arg(long)]
-    pub threads: Option<usize>,
-}
-
-/// Sets the number of worker threads once for the whole command.
-pub fn set_threads(n: Option<usize>) -> Result<()> {
-    if let Some(n) = n {
-        anyhow::ensure!(n > 0, "--threads must be at least 1");
-        rayon::ThreadPoolBuilder::new().num_threads(n).build_global().context("cannot start the worker threads")?;
-    }
-    Ok(())
 }
 
 /// The rules of a `.toml` rule file, or one query-only rule from a mesh file.
