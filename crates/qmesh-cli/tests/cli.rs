@@ -110,6 +110,13 @@ fn convert_refuses_to_overwrite_its_input_and_reports_errors() {
     let (code, said, err) = qmesh(&["convert", "-q", grid.to_str().unwrap(), quiet.to_str().unwrap()]);
     assert_eq!((code, said.as_str()), (0, ""), "{err}");
     assert_eq!(std::fs::read(&quiet).unwrap(), std::fs::read(&out).unwrap());
+    // --json as with the other commands: what was written, and the same file.
+    let json = temp("c_json.msh");
+    let j = json_of(&["convert", grid.to_str().unwrap(), json.to_str().unwrap(), "--json"]);
+    assert_eq!((j["format"].as_str(), j["points"].as_u64(), j["cells"].as_u64()), (Some("msh"), Some(27), Some(8)));
+    assert_eq!(std::fs::read(&json).unwrap(), std::fs::read(&out).unwrap());
+    let j = json_of(&["convert", grid.to_str().unwrap(), temp("c_json.off").to_str().unwrap(), "--json"]);
+    assert_eq!((j["polygons"].as_u64(), j["boundary_of_volumes"].as_u64()), (Some(24), Some(8)));
     // -o OUT, as with every other command; one output only.
     let flagged = temp("c_flag.msh");
     let (code, _, err) = qmesh(&["convert", grid.to_str().unwrap(), "-o", flagged.to_str().unwrap(), "-q"]);

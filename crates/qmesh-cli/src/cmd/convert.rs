@@ -6,6 +6,7 @@ use std::process::ExitCode;
 use anyhow::Result;
 use qmesh::build::BuildOptions;
 use qmesh::io::{Format, WriteOptions, indexed_for, load_map, resolve_format, write_indexed, write_map};
+use serde_json::{Value, json};
 
 use super::{InputArgs, parse_format};
 
@@ -35,10 +36,8 @@ pub struct Args {
     /// Leave out the points that no cell uses (kept by default).
     #[arg(long)]
     pub drop_unused: bool,
-    /// No summary (warnings and errors are still printed, on stderr; the exit status
-    /// tells the outcome), as with the other commands.
-    #[arg(short, long)]
-    pub quiet: bool,
+    #[command(flatten)]
+    pub report: super::ReportArgs,
 }
 
 pub fn run(mut a: Args) -> Result<ExitCode> {
@@ -57,22 +56,37 @@ pub fn run(mut a: Args) -> Result<ExitCode> {
     }
     let format = resolve_format(&output, parse_format(&a.to)?)?;
     let opts = WriteOptions { binary: a.binary };
+    let io = json!({"input": a.input.input.display().to_string(), "output": output.display().to_string(),
+        "format": format.name()});
     if format == Format::Moka {
         write_map(&output, &loaded.map, Some(format), &opts)?;
-        if !a.quiet {
-            let c = loaded.map.count_cells();
-            println!("wrote {} (the map: {} darts, {} volumes)", output.display(), loaded.map.nb_darts(), c.volumes);
+        let (darts, volumes) = (loaded.map.nb_darts(), loaded.map.count_cells().volumes);
+        if a.report.json {
+            print_json(io, json!({"darts": darts, "volumes": volumes}))?;
+        } else if !a.report.quiet {
+            println!("wrote {} (the map: {darts} darts, {volumes} volumes)", output.display());
         }
         return Ok(ExitCode::SUCCESS);
     }
     let unused = loaded.report.unreferenced_points;
     let mesh = indexed_for(&loaded.map, &loaded.cell_arrays, format, !a.drop_unused);
     write_indexed(&output, &mesh, format, &opts)?;
-    if a.quiet {
+    // What the file holds, as written (a surface format gets the boundary surface).
+    let boundary = format.is_surface() && loaded.map.dimension() == 3;
+    if a.report.json {
+        let counts = json!({
+            "points": mesh.points.len(), "cells": mesh.nb_cells(), "polygons": mesh.nb_polygons(),
+            "boundary_of_volumes": boundary.then(|| loaded.map.count_cells().volumes),
+            "unused_points": if boundary { 0 } else { unused },
+            "unused_points_left_out": if a.drop_unused && !boundary { unused } else { 0 },
+        });
+        print_json(io, counts)?;
         return Ok(ExitCode::SUCCESS);
     }
-    // What the file holds, as written (a surface format gets the boundary surface).
-    let what = if format.is_surface() && mesh.nb_polygons() > 0 && loaded.map.dimension() == 3 {
+    if a.report.quiet {
+        return Ok(ExitCode::SUCCESS);
+    }
+    let what = if boundary && mesh.nb_polygons() > 0 {
         format!("{} polygons: the boundary surface of {} cells", mesh.nb_polygons(), loaded.map.count_cells().volumes)
     } else if mesh.is_volume() {
         format!("{} cells", mesh.nb_cells())
@@ -80,7 +94,7 @@ pub fn run(mut a: Args) -> Result<ExitCode> {
         format!("{} polygons", mesh.nb_polygons())
     };
     println!("wrote {} ({} points, {what})", output.display(), mesh.points.len());
-    if unused > 0 && !(format.is_surface() && loaded.map.dimension() == 3) {
+    if unused > 0 && !boundary {
         if a.drop_unused {
             println!("  {unused} points that no cell uses were left out (--drop-unused)");
         } else {
@@ -88,4 +102,15 @@ pub fn run(mut a: Args) -> Result<ExitCode> {
         }
     }
     Ok(ExitCode::SUCCESS)
+}
+
+/// Prints the input and output names and `counts` as one JSON object.
+fn print_json(io: Value, counts: Value) -> Result<()> {
+    let mut all = io;
+    if let (Value::Object(all), Value::Object(counts)) = (&mut all, counts) {
+        all.extend(counts);
+        all.insert("peak_memory_bytes".into(), json!(crate::memory::peak_rss_bytes()));
+    }
+    println!("{}", serde_json::to_string_pretty(&all)?);
+    Ok(())
 }
