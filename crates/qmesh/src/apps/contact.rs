@@ -36,6 +36,10 @@ impl NearLeaves {
 
     /// Adds the lists of `other` (for other cells) after its own.
     pub fn append(&mut self, other: NearLeaves) {
+        if self.lists.is_empty() && self.leaves.is_empty() {
+            *self = other;
+            return;
+        }
         let shift = self.leaves.len() as u32;
         self.lists.reserve(other.lists.len());
         self.lists.extend(other.lists.into_iter().map(|(c, (start, len))| (c, (start + shift, len))));

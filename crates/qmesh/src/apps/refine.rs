@@ -96,7 +96,8 @@ pub(super) fn refine(
     // at most 182 darts and 10 vertices per refined cell; unused room is never touched).
     map.reserve(DARTS_PER_CELL * cells.len(), VERTICES_PER_CELL * cells.len());
     let flag = map.reserve_mark()?;
-    let octants: Vec<OctCell> = cells.iter().flat_map(|&(_, c)| c.children()).collect();
+    let mut octants: Vec<OctCell> = Vec::with_capacity(8 * cells.len());
+    octants.extend(cells.iter().flat_map(|&(_, c)| c.children()));
     let child_level = i32::from(octants.first().map_or(0, |c| c.level));
     // The children's contact needs their octree cells only: it is tested while the
     // cells are read, their edges split and their faces and volumes replaced, so that

@@ -176,7 +176,8 @@ fn subdivide_on_pool(
                 volumes.sort_unstable();
                 let tree =
                     Octree { root, leaves: leaves.into_keys().chain(last_level.iter().map(|c| c.cell)).collect() };
-                (tree.to_mesh(), tree.with_hanging_vertices(), volumes, tree)
+                let (mesh, hanging) = rayon::join(|| tree.to_mesh(), || tree.with_hanging_vertices());
+                (mesh, hanging, volumes, tree)
             },
         );
         removed?;
@@ -259,32 +260,42 @@ fn subdivide_qr(
     patterns: Option<&PatternSet>,
     progress: &dyn Fn(u8),
 ) -> Result<QrSubdivision, MapError> {
-    let mut generated = None;
-    let set = given_or_generated(patterns, GeneratedKind::HexSubdivision, &mut generated);
     let root = start.root;
-    let t = Instant::now();
-    let mut map = build_map(start.to_mesh(), &BuildOptions::default()).expect("a grid of boxes builds").0;
-    // Each dart's label is the level of its volume (replacements copy labels to the
-    // darts they create; children are relabelled after each refinement).
-    map.enable_labels();
     let mut r = SubdivideReport::default();
+    // The level whose touched cells the refinement of `level` splits.
+    let parents_of = |level: u8| (level <= opts.levels).then(|| level - 1);
+    // The pattern set (when generated) is made while the level-0 map is built and its
+    // cells tested.
+    let mut generated = None;
+    let slot = &mut generated;
+    let (set, (mut map, (mut fresh, mut fresh_near), (start_seconds, contact_seconds))) = rayon::join(
+        move || given_or_generated(patterns, GeneratedKind::HexSubdivision, slot),
+        || {
+            let t = Instant::now();
+            let mut map = build_map(start.to_mesh(), &BuildOptions::default()).expect("a grid of boxes builds").0;
+            // Each dart's label is the level of its volume (replacements copy labels to
+            // the darts they create; children are relabelled after each refinement).
+            map.enable_labels();
+            let mut w = OrbitWalker::new();
+            let boxes: Vec<(Dart, Aabb)> = map.cells(Orbit::Volume).map(|d| (d, volume_box(&map, d, &mut w))).collect();
+            let start_seconds = t.elapsed().as_secs_f64();
+            // The volumes made by the last level: the only ones the surface may touch, or
+            // that may be outside and untouched, among the cells of their level (the
+            // older leaves were refined, removed or found inside; balance refines inside
+            // cells only); and the leaves of the surface's hierarchy near those the next
+            // level refines.
+            let t = Instant::now();
+            let fresh = fresh_cells(root, surface, &boxes, &NearLeaves::default(), parents_of(1));
+            (map, fresh, (start_seconds, t.elapsed().as_secs_f64()))
+        },
+    );
+    r.phases.start = start_seconds;
+    r.phases.contact += contact_seconds;
     // Each leaf's dart stays a dart of its volume: edge splits and face replacements
     // add darts and relink the old ones, and only refined or removed cells lose theirs.
     let mut leaves: FxHashMap<OctCell, Dart> = FxHashMap::default();
-    let mut w = OrbitWalker::new();
-    let boxes: Vec<(Dart, Aabb)> = map.cells(Orbit::Volume).map(|d| (d, volume_box(&map, d, &mut w))).collect();
-    r.phases.start = t.elapsed().as_secs_f64();
-    // The level whose touched cells the refinement of `level` splits.
-    let parents_of = |level: u8| (level <= opts.levels).then(|| level - 1);
-    // The volumes made by the last level: the only ones the surface may touch, or that
-    // may be outside and untouched, among the cells of their level (the older leaves
-    // were refined, removed or found inside; balance refines inside cells only); and the
-    // leaves of the surface's hierarchy near those the next level refines.
-    let t = Instant::now();
-    let (mut fresh, mut fresh_near) = fresh_cells(root, surface, &boxes, &NearLeaves::default(), parents_of(1));
     // The untouched regions among `fresh`, when the last refinement found them.
     let mut fresh_regions: Option<Vec<u32>> = None;
-    r.phases.contact += t.elapsed().as_secs_f64();
     let mut level = 0;
     loop {
         level += 1;
@@ -345,7 +356,12 @@ fn subdivide_qr(
             cells.iter().for_each(|(_, c)| {
                 leaves.remove(c);
             });
-            fresh.extend(refined.children);
+            // The first batch's lists are taken as they are, not copied.
+            if fresh.is_empty() {
+                fresh = refined.children;
+            } else {
+                fresh.extend(refined.children);
+            }
             fresh_near.append(refined.near);
             fresh_regions = refined.regions;
         }

@@ -226,6 +226,9 @@ pub fn replace_cells(
                 }
             }
             let created = executor.execute(map, &jobs);
+            let made: usize = used.iter().map(|&(i, _)| plan(i).map_or(0, |p| p.volume_starts.len())).sum();
+            r.created_volumes.reserve(made);
+            r.created_from.reserve(made);
             let mut first = 0;
             for (&(i, from), job) in used.iter().zip(&jobs) {
                 let starts = &plan(i).expect("a job has a plan").volume_starts;
