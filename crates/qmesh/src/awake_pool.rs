@@ -5,9 +5,12 @@
 //! tens of microseconds. A pipeline whose parallel steps last a fraction of a
 //! millisecond, with short sequential steps between them (the levels of a subdivision),
 //! pays that wake-up at every step. Here the other workers poll for work until the
-//! pipeline ends, as OpenMP runtimes keep theirs spinning for a while.
+//! pipeline ends, as OpenMP runtimes keep theirs spinning for a while, and the thread
+//! running the pipeline keeps looking for work whenever it waits for a job it handed out.
 
+use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::time::{Duration, Instant};
 
 /// Sets the flag when dropped, so that the pollers stop even if the body panics.
 struct DoneOnDrop<'a>(&'a AtomicBool);
@@ -29,7 +32,7 @@ impl Drop for DoneOnDrop<'_> {
 /// assert_eq!(sum, 499_500);
 /// ```
 pub fn with_workers_awake<R: Send>(body: impl FnOnce() -> R + Send) -> R {
-    let done = AtomicBool::new(false);
+    let done = Arc::new(AtomicBool::new(false));
     // The worker that runs `body`: a poller that lands there (taken back while the body
     // waits for a job) must return at once, or the body would never resume.
     let owner = AtomicUsize::new(usize::MAX);
@@ -42,6 +45,7 @@ pub fn with_workers_awake<R: Send>(body: impl FnOnce() -> R + Send) -> R {
         let (result, ()) = rayon::join(
             || {
                 let _done = DoneOnDrop(&done);
+                stay_awake(Arc::clone(&done), owner.load(Ordering::Relaxed));
                 body()
             },
             || {
@@ -51,6 +55,35 @@ pub fn with_workers_awake<R: Send>(body: impl FnOnce() -> R + Send) -> R {
         );
         result
     })
+}
+
+/// How long the body's thread looks for work each time it finds nothing to do (see
+/// [`stay_awake`]).
+const AWAKE_SLICE: Duration = Duration::from_micros(5);
+
+/// Keeps the body's thread (`owner`) from falling asleep while it waits for a job it
+/// handed out, until `done`. A rayon worker that finds no work for a few dozen polls
+/// sleeps, and on a virtual machine whose idle cores halt, waking it takes 30-150 µs
+/// (`perf sched timehist`); the body's thread waits like that at the end of most
+/// parallel steps. Here a job waits in that thread's broadcast queue, which it looks at
+/// when its own queue is empty, before stealing: the job looks for work (stealing, as
+/// the wait would) for [`AWAKE_SLICE`], then puts a new one there and returns, so that
+/// the waiting thread checks whether its wait is over.
+fn stay_awake(done: Arc<AtomicBool>, owner: usize) {
+    rayon::spawn_broadcast(move |ctx| {
+        if ctx.index() != owner || done.load(Ordering::Acquire) {
+            return;
+        }
+        let start = Instant::now();
+        while !done.load(Ordering::Acquire) && start.elapsed() < AWAKE_SLICE {
+            if rayon::yield_now() != Some(rayon::Yield::Executed) {
+                (0..64).for_each(|_| std::hint::spin_loop());
+            }
+        }
+        if !done.load(Ordering::Acquire) {
+            stay_awake(Arc::clone(&done), owner);
+        }
+    });
 }
 
 /// Runs the pool's pending jobs, one at a time, until `done` (at once on the `owner`'s
