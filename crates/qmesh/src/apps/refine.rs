@@ -149,6 +149,8 @@ pub(super) fn refine(
             (FreshCell { dart, cell: octants[k], touches: touches[k] }, k)
         })
         .unzip();
+    // The cells' reads go on another core when one is free (thousands of small lists).
+    rayon::spawn(move || drop(before));
     let regions = regions.filter(|_| children.len() == octants.len()).map(|mut found| {
         let earlier = found.len() - octants.len();
         let of_children: Vec<u32> = octant_of.iter().map(|&k| found[earlier + k]).collect();

@@ -356,9 +356,11 @@ fn subdivide_qr(
             cells.iter().for_each(|(_, c)| {
                 leaves.remove(c);
             });
-            // The first batch's lists are taken as they are, not copied.
-            if fresh.is_empty() {
-                fresh = refined.children;
+            // The longer list is kept and the shorter copied into it.
+            if fresh.len() < refined.children.len() {
+                let mut children = refined.children;
+                children.splice(0..0, fresh);
+                fresh = children;
             } else {
                 fresh.extend(refined.children);
             }

@@ -38,9 +38,12 @@ impl DisjointExecutor {
     }
 
     /// Frees the buffers kept on this thread (when no more passes follow, so that they do
-    /// not add to the peak memory of what comes after).
+    /// not add to the peak memory of what comes after), on another core when one is free.
     pub fn release_recycled() {
-        RECYCLED.with(|r| r.borrow_mut().clear());
+        let kept = RECYCLED.with(|r| std::mem::take(&mut *r.borrow_mut()));
+        if !kept.is_empty() {
+            rayon::spawn(move || drop(kept));
+        }
     }
 
     /// Keeps this executor's buffers for the next [`reuse`](Self::reuse) on this thread.
