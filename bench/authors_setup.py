@@ -32,10 +32,9 @@ import argparse
 import json
 import os
 import re
-import statistics
 import sys
 
-from common import DATA, MEASURE, Q, ROOT, sh
+from common import DATA, MEASURE, Q, ROOT, median, sh
 PEER = os.path.join(os.path.dirname(DATA), "peers", "cgal_hexa_subdivision")
 SURFACES = ["bunny.off", "armadillo.obj", "cgal_mesh3.off"]
 
@@ -139,11 +138,6 @@ def wall_and_memory(q, p):
     return (f"| {q['seconds']:.2f} | {p['seconds']:.2f} | {p['seconds'] / q['seconds']:.1f} "
             f"| {q['peak_rss_bytes'] / 1e6:.0f} | {p['peak_rss_bytes'] / 1e6:.0f} "
             f"| {p['peak_rss_bytes'] / q['peak_rss_bytes']:.1f} |")
-
-
-def median(measured, figure):
-    """The median over the runs of `figure` of a command's report (bench/measure.py)."""
-    return statistics.median(figure(o) for o in measured["outputs"])
 
 
 def cells(k):

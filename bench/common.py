@@ -1,6 +1,7 @@
 """What the comparison scripts share: where the project, the shared data and the
 release binary are, and running a command that must succeed."""
 import os
+import statistics
 import subprocess
 import sys
 import tempfile
@@ -39,3 +40,8 @@ def timed(cmd, ok=(0,)):
         if done.returncode not in ok:
             sys.exit(f"failed: {' '.join(cmd)}\n{done.stderr[-2000:]}")
         return wall, int(report.read().split()[-1]) * 1024, done.stdout
+
+
+def median(measured, figure):
+    """The median over the runs of `figure` of a command's report (bench/measure.py)."""
+    return statistics.median(figure(o) for o in measured["outputs"])

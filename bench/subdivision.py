@@ -9,7 +9,8 @@ output (its build time: the map of the boxes as plain hexahedra) and `qmesh conf
 on it (its `hanging` + `build` phases: the map of the boxes with the hanging vertices
 inserted into the coarse faces, every face sewn, which is the map the query-replace
 subdivision makes). Step times are the commands' own (`seconds`, `build_seconds`,
-`phases`); wall times and peak memory are the processes'. Prints a Markdown table:
+`phases`), the median over the runs as `authors_setup.py` takes them; wall times and
+peak memory are the processes'. Prints a Markdown table:
 volumes, #fqr, #vqr, the times, qr / (direct + map) for both maps and the speed-up of 2
 threads over 1.
 
@@ -19,7 +20,7 @@ import json
 import os
 import sys
 
-from common import DATA, MEASURE, Q, ROOT, sh
+from common import DATA, MEASURE, Q, ROOT, median, sh
 SURFACES = ["armadillo.obj", "bunny.off", "fertility.off", "cgal_mesh3.off"]
 
 
@@ -55,14 +56,16 @@ def main():
             o = q2["output"]
             if o["volumes"] != d["output"]["volumes"] or o["volumes"] != q1["output"]["volumes"]:
                 sys.exit(f"{stem} L{level}: the runs disagree on the volumes")
-            dm = d["output"]["seconds"] + m["output"]["build_seconds"]
-            same = c["output"]["phases"]["hanging"] + c["output"]["phases"]["build"]
-            ds = d["output"]["seconds"] + same
+            qr2, qr1 = median(q2, lambda r: r["seconds"]), median(q1, lambda r: r["seconds"])
+            direct_s = median(d, lambda r: r["seconds"])
+            build = median(m, lambda r: r["build_seconds"])
+            dm = direct_s + build
+            same = median(c, lambda r: r["phases"]["hanging"] + r["phases"]["build"])
+            ds = direct_s + same
             print(f"| {stem} | {level} | {o['volumes']:,} | {o['faces_replaced']:,} | {o['volumes_replaced']:,} "
-                  f"| {o['seconds']:.3f} | {q1['output']['seconds']:.3f} "
-                  f"| {q1['output']['seconds'] / o['seconds']:.2f} "
-                  f"| {d['output']['seconds']:.3f} | {m['output']['build_seconds']:.3f} | {dm:.3f} "
-                  f"| {o['seconds'] / dm:.2f} | {same:.3f} | {o['seconds'] / ds:.2f} "
+                  f"| {qr2:.3f} | {qr1:.3f} | {qr1 / qr2:.2f} "
+                  f"| {direct_s:.3f} | {build:.3f} | {dm:.3f} "
+                  f"| {qr2 / dm:.2f} | {same:.3f} | {qr2 / ds:.2f} "
                   f"| {q2['seconds']:.2f} | {q2['peak_rss_bytes'] / 1e6:.0f} |", flush=True)
 
 
