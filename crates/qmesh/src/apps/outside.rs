@@ -54,15 +54,10 @@ pub(super) fn outside_in_regions(
 pub(super) fn untouched_regions(root: &RootBox, cells: &[OctCell], touched: &[bool]) -> Vec<u32> {
     let siblings = Siblings::of(cells);
     let coarsest = cells.iter().map(|c| c.level).min().unwrap_or(0);
-    // The untouched face neighbour (as large or larger) of cell c towards d, if any;
-    // `family`: the indices of c and its siblings.
-    let neighbour = |c: OctCell, family: Option<&[u32; 8]>, d: [i64; 3]| {
+    // The untouched face neighbour (as large or larger) of a level-0 cell c towards d,
+    // if any.
+    let neighbour = |c: OctCell, d: [i64; 3]| {
         let p = [0, 1, 2].map(|k| i64::from(c.ijk[k]) + d[k]);
-        if let Some(f) = family.filter(|_| p.iter().zip(c.ijk).all(|(&a, b)| a >> 1 == i64::from(b >> 1))) {
-            // A sibling: the same parent.
-            let j = f[(0..3).map(|k| ((p[k] & 1) as usize) << k).sum::<usize>()];
-            return if j != NONE && !touched[j as usize] { j } else { NONE };
-        }
         if !root.contains(c.level, p) {
             return NONE;
         }
@@ -74,16 +69,53 @@ pub(super) fn untouched_regions(root: &RootBox, cells: &[OctCell], touched: &[bo
         }
     };
     const FACES: [[i64; 3]; 6] = [[-1, 0, 0], [1, 0, 0], [0, -1, 0], [0, 1, 0], [0, 0, -1], [0, 0, 1]];
+    let untouched = |j: u32| j != NONE && !touched[j as usize];
     // Face neighbours are joined on all cores: a region is named by its first cell
-    // whatever the order of the unions.
+    // whatever the order of the unions. The level-0 cells look for theirs one by one.
     let regions = SharedDisjointSets::new(cells.len());
-    (0..cells.len()).into_par_iter().with_min_len(1 << 10).filter(|&k| !touched[k]).for_each(|k| {
-        let c = cells[k];
-        let family = siblings.family(c);
+    siblings.top.par_iter().filter(|&(_, &k)| untouched(k)).for_each(|(_, &k)| {
         for d in FACES {
-            let j = neighbour(c, family, d);
+            let j = neighbour(cells[k as usize], d);
             if j != NONE {
-                regions.union(k as u32, j);
+                regions.union(k, j);
+            }
+        }
+    });
+    // The others family by family: a child meets a sibling on one side along each
+    // axis, and on the other the child of the neighbouring family facing it (looked up
+    // once for the four children on that side); where that family does not exist, a
+    // coarser cell, as [`neighbour`] finds it. A finer neighbour finds the cell itself.
+    (0..siblings.children.len()).into_par_iter().with_min_len(1 << 7).for_each(|g| {
+        let (parent, family) = (siblings.parents[g], &siblings.children[g]);
+        for k in 0..3 {
+            let bit = 1 << k;
+            for side in [0, bit] {
+                let facing = |o: usize| untouched(family[o]) && (o & bit) == side;
+                if !(0..8).any(facing) {
+                    continue;
+                }
+                let mut across = parent.ijk.map(i64::from);
+                across[k] += if side == 0 { -1 } else { 1 };
+                let inside = root.contains(parent.level, across);
+                let next = OctCell { level: parent.level, ijk: across.map(|x| x as u32) };
+                let next_family = inside.then(|| siblings.by_parent.get(&next)).flatten();
+                for o in (0..8).filter(|&o| facing(o)) {
+                    let i = family[o];
+                    if side == 0 && untouched(family[o | bit]) {
+                        regions.union(i, family[o | bit]);
+                    }
+                    let j = match next_family {
+                        Some(&h) => siblings.children[h as usize][o ^ bit],
+                        None if inside && parent.level >= coarsest => (coarsest..=parent.level)
+                            .rev()
+                            .find_map(|l| siblings.index(next.ancestor(l)))
+                            .unwrap_or(NONE),
+                        None => NONE,
+                    };
+                    if untouched(j) {
+                        regions.union(i, j);
+                    }
+                }
             }
         }
     });
@@ -95,6 +127,8 @@ pub(super) fn untouched_regions(root: &RootBox, cells: &[OctCell], touched: &[bo
 /// entry per parent, and most entries are made without hashing.
 struct Siblings {
     by_parent: FxHashMap<OctCell, u32>,
+    /// The parents, in the order of `children`.
+    parents: Vec<OctCell>,
     /// Per parent, the index of each child (bit k of the octant: the upper half along axis k).
     children: Vec<[u32; 8]>,
     /// The level-0 cells (which have no parent).
@@ -103,7 +137,12 @@ struct Siblings {
 
 impl Siblings {
     fn of(cells: &[OctCell]) -> Siblings {
-        let mut s = Siblings { by_parent: FxHashMap::default(), children: Vec::new(), top: FxHashMap::default() };
+        let mut s = Siblings {
+            by_parent: FxHashMap::default(),
+            parents: Vec::new(),
+            children: Vec::new(),
+            top: FxHashMap::default(),
+        };
         let mut last: Option<(OctCell, usize)> = None;
         for (i, &c) in cells.iter().enumerate() {
             if c.level == 0 {
@@ -118,6 +157,7 @@ impl Siblings {
                     let g = *s.by_parent.entry(p).or_insert(next) as usize;
                     if g == s.children.len() {
                         s.children.push([NONE; 8]);
+                        s.parents.push(p);
                     }
                     last = Some((p, g));
                     g
@@ -236,11 +276,18 @@ mod tests {
     fn regions_are_the_face_connected_untouched_cells() {
         let root = RootBox { lo: [0.0; 3], cell: [1.0; 3], cells: [2, 1, 1] };
         let surface = octahedron([1.0, 0.5, 0.5], 0.8);
-        // Level-2 cells of two level-0 cells, some split into level 3, in a scrambled order.
+        // Level-2 cells of two level-0 cells, some split into level 3 and a few of those
+        // into level 4 (beside level-2 cells: found two levels up), in a scrambled order.
         let mut cells: Vec<OctCell> = Vec::new();
         for i in 0..128u32 {
             let c = OctCell { level: 2, ijk: [i % 8, i / 8 % 4, i / 32] };
-            if i % 5 == 0 { cells.extend(c.children()) } else { cells.push(c) }
+            if i % 5 != 0 {
+                cells.push(c);
+                continue;
+            }
+            for (n, child) in c.children().enumerate() {
+                if i % 10 == 0 && n % 3 == 0 { cells.extend(child.children()) } else { cells.push(child) }
+            }
         }
         cells.sort_by_key(|c| (c.ijk[1] * 7 + c.ijk[0] * 3 + c.ijk[2]) % 11);
         let boxes: Vec<_> = cells.iter().map(|&c| root.cell_box(c)).collect();
