@@ -12,6 +12,8 @@
 //! memory to find them). There, the pages about to be written are asked for in one call
 //! per range, which backs them in a fraction of the time one fault per page takes.
 
+use rayon::prelude::*;
+
 /// Buffers smaller than this keep ordinary pages.
 const MIN_BYTES: usize = 4 << 20;
 const HUGE_PAGE: usize = 2 << 20;
@@ -34,23 +36,39 @@ pub(super) fn advise_huge_pages<T>(v: &Vec<T>) {
 /// Ranges smaller than this are left to ordinary faults.
 const MIN_POPULATE_BYTES: usize = 64 << 10;
 const PAGE: usize = 4 << 10;
+/// Bytes of one piece of [`extend_backed`]: small enough for the pieces to be shared
+/// out evenly between cores and to be written while the kernel's clearing of their
+/// pages is still in cache, large enough for one call per piece to cost nothing.
+const PIECE: usize = 256 << 10;
 
-/// Asks the kernel to back the first `n` elements of the spare capacity of `v` (those
-/// the next `n` pushes write) with memory now, in one call, instead of one page fault
-/// per page as they are written (a hint: contents never change, and nothing happens
-/// where the kernel declines or on other systems). The next pushes still have to write
-/// the elements.
-pub(super) fn populate_spare<T>(v: &Vec<T>, n: usize) {
-    let size = std::mem::size_of::<T>();
-    let bytes = n.min(v.capacity() - v.len()) * size;
-    if bytes < MIN_POPULATE_BYTES {
+/// Appends `n` copies of `fill` to `v`. When they fill many pages, it goes on all cores
+/// a piece at a time: the kernel is first asked to back the piece's pages with memory in
+/// one call (`MADV_POPULATE_WRITE`, a hint: contents never change, and nothing happens
+/// where the kernel declines or on other systems), which takes a fraction of the time of
+/// one fault per page as they are written; then the piece is written.
+pub(super) fn extend_backed<T: Copy + Send + Sync>(v: &mut Vec<T>, n: usize, fill: T) {
+    let size = std::mem::size_of::<T>().max(1);
+    if n * size < MIN_POPULATE_BYTES {
+        v.extend(std::iter::repeat_n(fill, n));
         return;
     }
-    let first = v.as_ptr() as usize + v.len() * size;
-    let start = first.next_multiple_of(PAGE);
-    let end = (first + bytes) / PAGE * PAGE;
-    if end > start {
-        advise(start, end - start, Advice::Populate);
+    v.reserve(n);
+    v.spare_capacity_mut()[..n].par_chunks_mut(PIECE / size).for_each(|piece| {
+        let first = piece.as_ptr() as usize;
+        let (start, end) = (first.next_multiple_of(PAGE), (first + std::mem::size_of_val(piece)) / PAGE * PAGE);
+        if end > start {
+            advise(start, end - start, Advice::Populate);
+        }
+        piece.iter_mut().for_each(|x| {
+            x.write(fill);
+        });
+    });
+    let len = v.len() + n;
+    // SAFETY: the capacity holds `len` elements (reserved above) and the `n` after the
+    // old length were all written by the pieces above.
+    #[allow(unsafe_code)]
+    unsafe {
+        v.set_len(len);
     }
 }
 
@@ -79,3 +97,22 @@ fn advise(start: usize, len: usize, advice: Advice) {
 
 #[cfg(not(target_os = "linux"))]
 fn advise(_start: usize, _len: usize, _advice: Advice) {}
+
+#[cfg(test)]
+mod tests {
+    use super::extend_backed;
+
+    #[test]
+    fn extend_backed_appends_copies_of_the_fill_after_what_was_there() {
+        // Below and above the size that goes to the kernel and to all cores, into a
+        // buffer with and without room already made.
+        for (n, room) in [(0, 0), (10, 0), (100_000, 0), (100_000, 150_000), (70_001, 3)] {
+            let mut v = Vec::with_capacity(room);
+            v.extend([[1u32, 2, 3, 4]; 3]);
+            extend_backed(&mut v, n, [9, 0, 9, 0]);
+            assert_eq!(v.len(), 3 + n);
+            assert!(v[..3].iter().all(|&x| x == [1, 2, 3, 4]));
+            assert!(v[3..].iter().all(|&x| x == [9, 0, 9, 0]));
+        }
+    }
+}

@@ -9,7 +9,7 @@ use super::constructors::Layout;
 use super::dart::Dart;
 use super::error::MapError;
 use super::orbit::LocalScratch;
-use super::page_backing::{advise_huge_pages, populate_spare};
+use super::page_backing::{advise_huge_pages, extend_backed};
 use rayon::prelude::*;
 
 /// A 3D combinatorial map (2022 §2.2, 2025 §3.2) with one position per vertex.
@@ -250,34 +250,15 @@ impl CMap3 {
         self.free_darts.truncate(keep);
         let first = self.betas.len();
         assert!(first + fresh < u32::MAX as usize, "too many darts for u32 indices");
-        self.populate_for(fresh);
-        extend_on_cores(&mut self.betas, fresh, |_| [0; 4]);
-        extend_on_cores(&mut self.vertex, fresh, |_| DEAD);
+        extend_backed(&mut self.betas, fresh, [0; 4]);
+        extend_backed(&mut self.vertex, fresh, DEAD);
         if !self.marks.is_empty() {
-            extend_on_cores(&mut self.marks, fresh, |_| 0);
+            extend_backed(&mut self.marks, fresh, 0);
         }
         if let Some(l) = &mut self.labels {
-            extend_on_cores(l, fresh, |_| 0);
+            extend_backed(l, fresh, 0);
         }
         extend_on_cores(out, fresh, |k| Dart::from_raw((first + k) as u32).expect("index 0 is never reserved"));
-    }
-
-    /// Backs the room of the next `n` darts of every per-dart table with memory, on all
-    /// cores ([`populate_spare`]).
-    fn populate_for(&self, n: usize) {
-        let (betas, vertex, marks) = (&self.betas, &self.vertex, &self.marks);
-        rayon::join(
-            || populate_spare(betas, n),
-            || {
-                populate_spare(vertex, n);
-                if !marks.is_empty() {
-                    populate_spare(marks, n);
-                }
-                if let Some(l) = &self.labels {
-                    populate_spare(l, n);
-                }
-            },
-        );
     }
 
     /// Low-level unlink, no checks: frees βi(d) and the reverse pointer of its partner.

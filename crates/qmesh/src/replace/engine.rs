@@ -247,7 +247,11 @@ pub fn replace_cells(
 /// `f` of every dart of `cells`, in order, on all cores (on this one for a few cells,
 /// where handing them out costs more than looking them up).
 fn on_cores<T: Send>(cells: &[Dart], f: impl Fn(Dart) -> T + Sync) -> Vec<T> {
-    if cells.len() < 64 { cells.iter().map(|&d| f(d)).collect() } else { cells.par_iter().map(|&d| f(d)).collect() }
+    if cells.len() < 64 {
+        cells.iter().map(|&d| f(d)).collect()
+    } else {
+        cells.par_iter().with_max_len(32).map(|&d| f(d)).collect()
+    }
 }
 
 /// The f-pattern matching the face of `d` (either side when it is 3-sewn) and the
