@@ -36,32 +36,35 @@ pub(super) fn advise_huge_pages<T>(v: &Vec<T>) {
 /// Ranges smaller than this are left to ordinary faults.
 const MIN_POPULATE_BYTES: usize = 64 << 10;
 const PAGE: usize = 4 << 10;
-/// Bytes of one piece of [`extend_backed`]: small enough for the pieces to be shared
-/// out evenly between cores and to be written while the kernel's clearing of their
-/// pages is still in cache, large enough for one call per piece to cost nothing.
-const PIECE: usize = 256 << 10;
+/// Bytes of one piece of [`extend_backed`]: small enough for the pieces of a table of
+/// a megabyte to be shared out evenly between cores and to be written while the
+/// kernel's clearing of their pages is still in cache, large enough for one call per
+/// piece to cost little.
+const PIECE: usize = 64 << 10;
 
-/// Appends `n` copies of `fill` to `v`. When they fill many pages, it goes on all cores
-/// a piece at a time: the kernel is first asked to back the piece's pages with memory in
-/// one call (`MADV_POPULATE_WRITE`, a hint: contents never change, and nothing happens
-/// where the kernel declines or on other systems), which takes a fraction of the time of
-/// one fault per page as they are written; then the piece is written.
-pub(super) fn extend_backed<T: Copy + Send + Sync>(v: &mut Vec<T>, n: usize, fill: T) {
+/// Appends `item(k)` for k in `0..n` to `v`. When they fill many pages, it goes on all
+/// cores a piece at a time: the kernel is first asked to back the piece's pages with
+/// memory in one call (`MADV_POPULATE_WRITE`, a hint: contents never change, and
+/// nothing happens where the kernel declines or on other systems), which takes a
+/// fraction of the time of one fault per page as they are written; then the piece is
+/// written.
+pub(super) fn extend_backed<T: Send>(v: &mut Vec<T>, n: usize, item: impl Fn(usize) -> T + Sync) {
     let size = std::mem::size_of::<T>().max(1);
     if n * size < MIN_POPULATE_BYTES {
-        v.extend(std::iter::repeat_n(fill, n));
+        v.extend((0..n).map(item));
         return;
     }
     v.reserve(n);
-    v.spare_capacity_mut()[..n].par_chunks_mut(PIECE / size).for_each(|piece| {
+    let per_piece = PIECE / size;
+    v.spare_capacity_mut()[..n].par_chunks_mut(per_piece).with_max_len(1).enumerate().for_each(|(k, piece)| {
         let first = piece.as_ptr() as usize;
         let (start, end) = (first.next_multiple_of(PAGE), (first + std::mem::size_of_val(piece)) / PAGE * PAGE);
         if end > start {
             advise(start, end - start, Advice::Populate);
         }
-        piece.iter_mut().for_each(|x| {
-            x.write(fill);
-        });
+        for (j, x) in piece.iter_mut().enumerate() {
+            x.write(item(k * per_piece + j));
+        }
     });
     let len = v.len() + n;
     // SAFETY: the capacity holds `len` elements (reserved above) and the `n` after the
@@ -103,16 +106,16 @@ mod tests {
     use super::extend_backed;
 
     #[test]
-    fn extend_backed_appends_copies_of_the_fill_after_what_was_there() {
+    fn extend_backed_appends_the_items_in_order_after_what_was_there() {
         // Below and above the size that goes to the kernel and to all cores, into a
         // buffer with and without room already made.
         for (n, room) in [(0, 0), (10, 0), (100_000, 0), (100_000, 150_000), (70_001, 3)] {
             let mut v = Vec::with_capacity(room);
             v.extend([[1u32, 2, 3, 4]; 3]);
-            extend_backed(&mut v, n, [9, 0, 9, 0]);
+            extend_backed(&mut v, n, |k| [9, k as u32, 9, 0]);
             assert_eq!(v.len(), 3 + n);
             assert!(v[..3].iter().all(|&x| x == [1, 2, 3, 4]));
-            assert!(v[3..].iter().all(|&x| x == [9, 0, 9, 0]));
+            assert!(v[3..].iter().enumerate().all(|(k, &x)| x == [9, k as u32, 9, 0]));
         }
     }
 }

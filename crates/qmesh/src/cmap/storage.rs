@@ -250,15 +250,15 @@ impl CMap3 {
         self.free_darts.truncate(keep);
         let first = self.betas.len();
         assert!(first + fresh < u32::MAX as usize, "too many darts for u32 indices");
-        extend_backed(&mut self.betas, fresh, [0; 4]);
-        extend_backed(&mut self.vertex, fresh, DEAD);
+        extend_backed(&mut self.betas, fresh, |_| [0; 4]);
+        extend_backed(&mut self.vertex, fresh, |_| DEAD);
         if !self.marks.is_empty() {
-            extend_backed(&mut self.marks, fresh, 0);
+            extend_backed(&mut self.marks, fresh, |_| 0);
         }
         if let Some(l) = &mut self.labels {
-            extend_backed(l, fresh, 0);
+            extend_backed(l, fresh, |_| 0);
         }
-        extend_on_cores(out, fresh, |k| Dart::from_raw((first + k) as u32).expect("index 0 is never reserved"));
+        extend_backed(out, fresh, |k| Dart::from_raw((first + k) as u32).expect("index 0 is never reserved"));
     }
 
     /// Low-level unlink, no checks: frees βi(d) and the reverse pointer of its partner.
@@ -461,16 +461,5 @@ impl CMap3 {
 
     pub(super) fn err_if_dead(&self, d: Dart) -> Result<(), MapError> {
         if self.is_live(d) { Ok(()) } else { Err(MapError::DeadDart(d)) }
-    }
-}
-
-/// Appends `item(0) .. item(n - 1)` to `v`, written on all cores when there are many:
-/// the first writes into a grown table fault its pages in, which the kernel serves on
-/// every core at once.
-fn extend_on_cores<T: Send>(v: &mut Vec<T>, n: usize, item: impl Fn(usize) -> T + Sync + Send) {
-    if n < 1 << 12 {
-        v.extend((0..n).map(item));
-    } else {
-        v.par_extend((0..n).into_par_iter().map(item));
     }
 }

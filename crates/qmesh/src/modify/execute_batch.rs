@@ -89,11 +89,15 @@ impl DisjointExecutor {
         let starts = |c: &[usize]| c.iter().scan(0, |s, &n| Some(std::mem::replace(s, *s + n))).collect::<Vec<_>>();
         let (vertex_starts, dart_starts) = (starts(&vertex_counts), starts(&dart_counts));
         let new = &self.new;
-        split(created, &vertex_counts).into_par_iter().enumerate().with_min_len(64).for_each(|(k, created)| {
-            let mine = &new[dart_starts[k]..dart_starts[k] + dart_counts[k]];
-            let first = first_vertex + vertex_starts[k] as u32;
-            write(&shared, positions, &jobs[k], mine, (first, created));
-        });
+        // 64 jobs a piece: left to itself, rayon hands out a few large pieces, and the
+        // core with the slower one then finishes alone.
+        split(created, &vertex_counts).into_par_iter().enumerate().with_min_len(64).with_max_len(64).for_each(
+            |(k, created)| {
+                let mine = &new[dart_starts[k]..dart_starts[k] + dart_counts[k]];
+                let first = first_vertex + vertex_starts[k] as u32;
+                write(&shared, positions, &jobs[k], mine, (first, created));
+            },
+        );
         &self.new
     }
 }
